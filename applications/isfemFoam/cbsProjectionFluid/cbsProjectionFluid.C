@@ -1,0 +1,297 @@
+/*---------------------------------------------------------------------------*\
+  isfem: immersed smoothed finite element method for FSI (OpenFOAM side)
+\*---------------------------------------------------------------------------*/
+
+#include "cbsProjectionFluid.H"
+#include "fvCFD.H"
+#include "constrainHbyA.H"
+#include "constrainPressure.H"
+#include "adjustPhi.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+    defineTypeNameAndDebug(cbsProjectionFluid, 0);
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
+:
+    mesh_(mesh),
+    control_(mesh, "CBS"),
+    p_
+    (
+        IOobject
+        (
+            "p",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::AUTO_WRITE
+        ),
+        mesh
+    ),
+    U_
+    (
+        IOobject
+        (
+            "U",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::AUTO_WRITE
+        ),
+        mesh
+    ),
+    phi_
+    (
+        IOobject
+        (
+            "phi",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::READ_IF_PRESENT,
+            IOobject::AUTO_WRITE
+        ),
+        fvc::flux(U_)
+    ),
+    laminarTransport_(U_, phi_),
+    fvOptions_(fv::options::New(mesh)),
+    pRefCell_(0),
+    pRefValue_(0),
+    cumulativeContErr_(0)
+{
+    Info<< "Fluid: CBS-equivalent projection (Steps I-III), "
+        << "viscosity model "
+        << laminarTransport_.lookupOrDefault<word>
+           (
+               "transportModel",
+               "Newtonian"
+           )
+        << nl;
+
+    setRefCell(p_, control_.dict(), pRefCell_, pRefValue_);
+    mesh_.setFluxRequired(p_.name());
+
+    if (!fvOptions_.optionList::size())
+    {
+        Info<< "No fvOptions momentum sources" << nl;
+    }
+    Info<< endl;
+}
+
+
+// * * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * //
+
+Foam::tmp<Foam::fvVectorMatrix>
+Foam::cbsProjectionFluid::intermediateMomentum()
+{
+    // Step I (paper Eq. 37): transient + convection + viscous stress
+    // (laminar deviatoric stress of Eq. 11 for incompressible flow, with the
+    // transpose part for non-uniform viscosity) = momentum sources.
+    const volScalarField nu(laminarTransport_.nu());
+
+    tmp<fvVectorMatrix> tUEqn
+    (
+        fvm::ddt(U_)
+      + fvm::div(phi_, U_)
+      - fvm::laplacian(nu, U_)
+      - fvc::div(nu*dev2(T(fvc::grad(U_))))
+     ==
+        fvOptions_(U_)
+    );
+    fvVectorMatrix& UEqn = tUEqn.ref();
+
+    UEqn.relax();
+    fvOptions_.constrain(UEqn);
+
+    if (control_.momentumPredictor())
+    {
+        // Only the pressure gradient of the last step: not the new one
+        Foam::solve(UEqn == -fvc::grad(p_));
+        fvOptions_.correct(U_);
+    }
+
+    return tUEqn;
+}
+
+
+void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
+{
+    const volScalarField rAU(1.0/UEqn.A());
+
+    // Intermediate velocity without pressure gradient and its
+    // momentum-interpolated (Rhie-Chow) face flux
+    volVectorField HbyA(constrainHbyA(rAU*UEqn.H(), U_, p_));
+    surfaceScalarField phiHbyA
+    (
+        "phiHbyA",
+        fvc::flux(HbyA)
+      + fvc::interpolate(rAU)*fvc::ddtCorr(U_, phi_)
+    );
+
+    if (p_.needReference())
+    {
+        adjustPhi(phiHbyA, U_, p_);
+    }
+
+    // Pressure boundary conditions consistent with the flux
+    constrainPressure(p_, U_, phiHbyA, rAU);
+
+    // Step II (paper Eq. 38): pressure Poisson equation
+    while (control_.correctNonOrthogonal())
+    {
+        fvScalarMatrix pEqn
+        (
+            fvm::laplacian(rAU, p_) == fvc::div(phiHbyA)
+        );
+
+        pEqn.setReference(pRefCell_, pRefValue_);
+        pEqn.solve(mesh_.solver(p_.select(control_.finalInnerIter())));
+
+        if (control_.finalNonOrthogonalIter())
+        {
+            // Step III, face part: divergence-free flux
+            phi_ = phiHbyA - pEqn.flux();
+        }
+    }
+
+    continuityErrors();
+
+    // Step III (paper Eq. 39): velocity correction
+    U_ = HbyA - rAU*fvc::grad(p_);
+    U_.correctBoundaryConditions();
+    fvOptions_.correct(U_);
+}
+
+
+void Foam::cbsProjectionFluid::continuityErrors()
+{
+    const scalar dt = mesh_.time().deltaTValue();
+    const volScalarField contErr(fvc::div(phi_));
+
+    const scalar sumLocalContErr =
+        dt*mag(contErr)().weightedAverage(mesh_.V()).value();
+    const scalar globalContErr =
+        dt*contErr.weightedAverage(mesh_.V()).value();
+    cumulativeContErr_ += globalContErr;
+
+    Info<< "time step continuity errors : sum local = " << sumLocalContErr
+        << ", global = " << globalContErr
+        << ", cumulative = " << cumulativeContErr_ << endl;
+}
+
+
+void Foam::cbsProjectionFluid::checkFinite() const
+{
+    const scalar magU = gSumMag(U_.primitiveField());
+    const scalar magP = gSumMag(p_.primitiveField());
+
+    if (!std::isfinite(magU) || !std::isfinite(magP))
+    {
+        FatalErrorInFunction
+            << "The solution is no longer finite at time "
+            << mesh_.time().timeName() << " (sum |U| = " << magU
+            << ", sum |p| = " << magP << ")." << nl
+            << "    Nothing of this time step is written; the last written"
+            << " time directory is the last good state." << nl
+            << "    Reduce deltaT or maxCo in system/controlDict, or check"
+            << " the boundary conditions and momentum sources, then restart"
+            << " from the last written time (startFrom latestTime)."
+            << exit(FatalError);
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::scalar Foam::cbsProjectionFluid::courantNumber() const
+{
+    scalar CoNum = 0;
+    if (mesh_.nInternalFaces())
+    {
+        const scalarField sumPhi
+        (
+            fvc::surfaceSum(mag(phi_))().primitiveField()
+        );
+        CoNum = 0.5*gMax(sumPhi/mesh_.V().field())
+            *mesh_.time().deltaTValue();
+    }
+    return CoNum;
+}
+
+
+void Foam::cbsProjectionFluid::setInitialDeltaT()
+{
+    const Time& runTime = mesh_.time();
+    const dictionary& controlDict = runTime.controlDict();
+
+    if (controlDict.lookupOrDefault("adjustTimeStep", false))
+    {
+        const scalar maxCo = controlDict.get<scalar>("maxCo");
+        const scalar CoNum = courantNumber();
+        if (CoNum > SMALL)
+        {
+            const_cast<Time&>(runTime).setDeltaT
+            (
+                min
+                (
+                    maxCo*runTime.deltaTValue()/CoNum,
+                    min
+                    (
+                        runTime.deltaTValue(),
+                        controlDict.lookupOrDefault<scalar>("maxDeltaT", GREAT)
+                    )
+                )
+            );
+        }
+    }
+}
+
+
+void Foam::cbsProjectionFluid::adjustDeltaT()
+{
+    Time& runTime = const_cast<Time&>(mesh_.time());
+    const dictionary& controlDict = runTime.controlDict();
+
+    const scalar CoNum = courantNumber();
+    Info<< "Courant Number max: " << CoNum << endl;
+
+    if (controlDict.lookupOrDefault("adjustTimeStep", false))
+    {
+        const scalar maxCo = controlDict.get<scalar>("maxCo");
+        const scalar maxDeltaT =
+            controlDict.lookupOrDefault<scalar>("maxDeltaT", GREAT);
+
+        // Same damping of increases as OpenFOAM's setDeltaT.H
+        const scalar maxDeltaTFact = maxCo/(CoNum + SMALL);
+        const scalar deltaTFact =
+            min(min(maxDeltaTFact, 1.0 + 0.1*maxDeltaTFact), 1.2);
+
+        runTime.setDeltaT(min(deltaTFact*runTime.deltaTValue(), maxDeltaT));
+        Info<< "deltaT = " << runTime.deltaTValue() << endl;
+    }
+}
+
+
+void Foam::cbsProjectionFluid::solve()
+{
+    // Step I
+    tmp<fvVectorMatrix> tUEqn(intermediateMomentum());
+
+    // Steps II and III (repeated nCorrectors times, 1 = plain projection)
+    while (control_.correct())
+    {
+        projection(tUEqn.ref());
+    }
+
+    laminarTransport_.correct();
+
+    checkFinite();
+}
+
+
+// ************************************************************************* //
