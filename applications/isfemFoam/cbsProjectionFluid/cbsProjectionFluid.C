@@ -108,6 +108,10 @@ Foam::cbsProjectionFluid::intermediateMomentum()
     UEqn.relax();
     fvOptions_.constrain(UEqn);
 
+    // Step I solved for U (implicit convection and viscosity). Without it
+    // the intermediate velocity is H/A of the Step I matrix with U^n
+    // (explicit neighbours): fine for steady states, but its transient is
+    // slowed where the viscous number nu dt/h^2 is not small.
     if (control_.momentumPredictor())
     {
         // Only the pressure gradient of the last step: not the new one
