@@ -10,7 +10,7 @@ If (!Exists(h)) h = 0.15; EndIf
 
 Cylinder(1) = {0, 0, 0, 0, 0, L, R};
 
-eps = 1e-6*R;
+eps = 1e-3*R;   // OpenCASCADE bounding boxes are slightly enlarged
 inlet() = Surface In BoundingBox{-2*R, -2*R, -eps, 2*R, 2*R, eps};
 outlet() = Surface In BoundingBox{-2*R, -2*R, L - eps, 2*R, 2*R, L + eps};
 all() = Surface{:};
