@@ -1,0 +1,114 @@
+// Explicit dynamics of a hyperelastic solid discretised by smoothed FEM
+// (paper Sect. 4.2): central difference (Eqs. 53-55 of the paper's
+// procedure; Belytschko, Liu & Moran, Nonlinear Finite Elements, Sect. 6.2),
+// lumped mass, internal force by the chosen smoothing formulation (Eq. 31),
+// external forces (Eq. 43) from the caller, follower pressure and body
+// force, optional mass-proportional damping for quasi-static runs.
+#pragma once
+
+#include "material/Material.hpp"
+#include "mesh/TetMesh.hpp"
+#include "smoothing/SmoothingDomains.hpp"
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace smoothedSolid {
+
+struct SolidOptions {
+    Formulation formulation = Formulation::Selective;
+    double safety = 0.8;   // fraction of the critical time step
+    double damping = 0.0;  // mass-proportional damping coefficient [1/s]
+};
+
+class ExplicitSolid {
+public:
+    using VectorFunction = std::function<Vec3(double t, const Vec3& X)>;
+    using ScalarFunction = std::function<double(double t)>;
+
+    ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> material,
+                  SolidOptions options = {});
+
+    const TetMesh& mesh() const { return mesh_; }
+    const Material& material() const { return *material_; }
+    const SolidOptions& options() const { return options_; }
+    void setDamping(double c) { options_.damping = c; }
+
+    // --- boundary conditions and loads -----------------------------------
+    // Components: mask of x, y, z
+    void fix(const std::string& nodeSet, std::array<bool, 3> components = {true, true, true});
+    void prescribeDisplacement(const std::string& nodeSet, VectorFunction u,
+                               std::array<bool, 3> components = {true, true, true});
+    void prescribeVelocity(const std::string& nodeSet, VectorFunction v,
+                           std::array<bool, 3> components = {true, true, true});
+    // Pressure p(t) on a face set, acting against the current outward normal
+    void addFollowerPressure(const std::string& faceSet, ScalarFunction p);
+    // Body force per unit mass (acceleration), e.g. gravity
+    void setBodyForce(const Vec3& g) { bodyForce_ = g; }
+    // Nodal external forces set by a caller (the FSI force comes in here);
+    // held constant during advance()
+    std::vector<Vec3>& externalForce() { return fext_; }
+
+    // Initial velocity field v0(X); only before the first step
+    void setInitialVelocity(const VectorFunction& v0);
+
+    // --- time stepping ----------------------------------------------------
+    // Stable time step: safety * min element height / dilatational wave speed
+    double stableTimeStep() const;
+    // One central-difference step of size dt
+    void step(double dt);
+    // Advance by dt with as many stable sub-steps as needed
+    int advance(double dt);
+
+    // --- state -------------------------------------------------------------
+    double time() const { return t_; }
+    long steps() const { return nSteps_; }
+    const std::vector<Vec3>& displacement() const { return u_; }
+    // Velocity v^{n+1/2} of the last step (central difference half step);
+    // the initial velocity before the first step
+    const std::vector<Vec3>& velocity() const { return vHalf_; }
+    const std::vector<double>& lumpedMass() const { return mass_; }
+    std::vector<Vec3> currentCoordinates() const;
+
+    // Internal nodal forces f_int(u) and strain energy for displacement u
+    std::vector<Vec3> internalForce(const std::vector<Vec3>& u) const;
+    double strainEnergy(const std::vector<Vec3>& u) const;
+    // Kinetic energy of velocity()
+    double kineticEnergy() const;
+
+private:
+    struct Constraint {
+        std::vector<int> nodes;
+        std::array<bool, 3> components;
+        VectorFunction value;
+        bool isVelocity;
+    };
+    struct Pressure {
+        std::vector<Tri> faces;
+        ScalarFunction p;
+    };
+
+    void accelerationForces(std::vector<Vec3>& f) const;  // f_ext - f_int at t_
+    void applyConstraints(double dt);
+
+    TetMesh mesh_;
+    std::shared_ptr<const Material> material_;
+    SolidOptions options_;
+
+    // Smoothing domains: full stress on 'main_'; with the selective scheme
+    // deviatoric stress on main_ (faces) and volumetric on 'volumetric_'
+    SmoothingDomains main_, volumetric_;
+
+    std::vector<double> mass_;
+    std::vector<Vec3> u_, vHalf_, fext_;
+    mutable std::vector<Vec3> work_;
+    std::vector<Constraint> constraints_;
+    std::vector<Pressure> pressures_;
+    Vec3 bodyForce_ = Vec3::Zero();
+    double t_ = 0, dtLast_ = 0, hMin_ = 0;
+    long nSteps_ = 0;
+};
+
+}  // namespace smoothedSolid

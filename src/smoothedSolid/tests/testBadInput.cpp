@@ -1,0 +1,79 @@
+// Bad input: each a clear exception naming the problem
+#include "dynamics/ExplicitSolid.hpp"
+#include "testMeshes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace smoothedSolid;
+
+namespace {
+
+// Run f, expect an Error whose message contains every fragment
+template <class F>
+void expectError(F f, std::initializer_list<const char*> fragments)
+{
+    try {
+        f();
+        ADD_FAILURE() << "no exception";
+    } catch (const Error& e) {
+        std::printf("error: %s\n", e.what());
+        for (const char* s : fragments) {
+            EXPECT_NE(std::string(e.what()).find(s), std::string::npos)
+                << "message lacks '" << s << "'";
+        }
+    }
+}
+
+}  // namespace
+
+TEST(BadInput, MissingFile)
+{
+    expectError([] { TetMesh::fromGmsh("/nonexistent/leaflet.msh"); },
+                {"/nonexistent/leaflet.msh", "cannot open"});
+}
+
+TEST(BadInput, CorruptFile)
+{
+    const std::string path = test::tempDir() + "/corrupt.msh";
+    std::ofstream(path) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 3\ngarbage\n";
+    expectError([&] { TetMesh::fromGmsh(path); }, {"corrupt.msh"});
+}
+
+TEST(BadInput, MeshWithoutTets)
+{
+    const std::string path = test::surfaceOnlyMsh("noTets");
+    expectError([&] { TetMesh::fromGmsh(path); }, {"noTets.msh", "no linear tetrahedra"});
+}
+
+TEST(BadInput, UnknownSetName)
+{
+    const TetMesh mesh = TetMesh::fromGmsh(test::boxMsh("sets", 1, 1, 1, 0.5));
+    expectError([&] { mesh.nodeSet("clamped"); }, {"clamped", "xmin", "xmax", "solid"});
+    ExplicitSolid solid(mesh, std::make_shared<NeoHookean>(1.0, 10.0, 1.0));
+    expectError([&] { solid.fix("clamped"); }, {"clamped"});
+    expectError([&] { solid.addFollowerPressure("top", [](double) { return 1.0; }); },
+                {"top", "face set"});
+}
+
+TEST(BadInput, NonPositiveMaterialConstants)
+{
+    expectError([] { MooneyRivlin(-1000, 200, 5e4, 1000); }, {"c10", "positive"});
+    expectError([] { MooneyRivlin(1000, 200, 0, 1000); }, {"kappa", "positive"});
+    expectError([] { NeoHookean(80, 400, -1); }, {"density", "positive"});
+    expectError([] { StVenantKirchhoff(0, 2e6, 1000); }, {"mu", "positive"});
+    expectError([] { StVenantKirchhoff::fromYoung(1e6, 0.5, 1000); }, {"Poisson"});
+    expectError([] { MooneyRivlin::kappaFromPoisson(1000, 200, 0.5); }, {"Poisson"});
+}
+
+TEST(BadInput, InvertedInitialElement)
+{
+    std::vector<Vec3> X = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1),
+                           Vec3(1, 1, 1)};
+    // second element has negative orientation
+    std::vector<Tet> tets = {{0, 1, 2, 3}, {1, 3, 2, 4}};
+    expectError([&] { TetMesh(X, tets); }, {"element 1", "inverted"});
+    std::vector<Tet> flat = {{0, 1, 2, 3}, {0, 1, 2, 2}};
+    expectError([&] { TetMesh(X, flat); }, {"element 1", "zero volume"});
+}

@@ -1,0 +1,19 @@
+// Meshes for the unit tests, written with the gmsh API
+#pragma once
+
+#include <string>
+
+namespace smoothedSolid::test {
+
+// Unstructured tet mesh of the box [0,Lx]x[0,Ly]x[0,Lz], element size h,
+// written to a .msh file under the test's temporary directory; physical
+// groups: volume "solid", surfaces "xmin" and "xmax". Returns the path.
+std::string boxMsh(const std::string& name, double Lx, double Ly, double Lz, double h);
+
+// A surface-only (triangle) mesh of a square: a .msh without tetrahedra
+std::string surfaceOnlyMsh(const std::string& name);
+
+// Temporary directory of the tests
+std::string tempDir();
+
+}  // namespace smoothedSolid::test
