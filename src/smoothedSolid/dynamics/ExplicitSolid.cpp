@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 #include <limits>
 
 namespace smoothedSolid {
@@ -68,7 +70,23 @@ void ExplicitSolid::addFollowerPressure(const std::string& faceSet, ScalarFuncti
 double ExplicitSolid::stableTimeStep() const
 {
     const double c = std::sqrt(material_->waveModulus() / material_->density());
-    return options_.safety * hMin_ / c;
+    const double dt = options_.safety * hMin_ / c;
+    return contact_ ? dt * contact_->stableTimeStepFactor(hMin_ / c) : dt;
+}
+
+void ExplicitSolid::enableContact(ContactOptions options)
+{
+    std::vector<RigidSurface> keep;
+    if (contact_) keep = contact_->rigidSurfaces();
+    contact_ = std::make_unique<PenaltyContact>(mesh_, material_->waveModulus(), mass_, options);
+    for (auto& s : keep) contact_->addRigidSurface(std::move(s));
+    contactPressure_.assign(mesh_.nNodes(), 0.0);
+}
+
+void ExplicitSolid::addRigidSurface(RigidSurface surface)
+{
+    if (!contact_) enableContact();
+    contact_->addRigidSurface(std::move(surface));
 }
 
 std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
@@ -147,7 +165,7 @@ std::vector<Vec3> ExplicitSolid::currentCoordinates() const
 }
 
 // f = f_ext - f_int at the current state (Eq. 42)
-void ExplicitSolid::accelerationForces(std::vector<Vec3>& f) const
+void ExplicitSolid::accelerationForces(std::vector<Vec3>& f)
 {
     f = internalForce(u_);
     for (int i = 0; i < mesh_.nNodes(); ++i) f[i] = fext_[i] + mass_[i] * bodyForce_ - f[i];
@@ -167,6 +185,10 @@ void ExplicitSolid::accelerationForces(std::vector<Vec3>& f) const
                 f[t[2]] += fn;
             }
         }
+    }
+
+    if (contact_) {
+        maxPenetration_ = contact_->addForces(mesh_, currentCoordinates(), f, contactPressure_);
     }
 }
 
@@ -222,6 +244,126 @@ int ExplicitSolid::advance(double dt)
     const double sub = dt / n;
     for (int k = 0; k < n; ++k) step(sub);
     return n;
+}
+
+}  // namespace smoothedSolid
+
+// ---------------------------------------------------------------------------
+
+namespace smoothedSolid {
+
+void ExplicitSolid::elementStress(std::vector<Mat3>& sigma, std::vector<double>& J) const
+{
+    const int ne = mesh_.nElements();
+    sigma.assign(ne, Mat3::Zero());
+    J.assign(ne, 0.0);
+    const Material& m = *material_;
+    const auto& elemFaces = mesh_.elementFaces();
+
+    // Cauchy part of a stress function evaluated with the domain's F
+    auto cauchyOf = [](const Mat3& P, const Mat3& F) {
+        return Mat3(P * F.transpose() / F.determinant());
+    };
+    auto perDomain = [&](const SmoothingDomains& sd, auto stress) {
+        std::vector<Mat3> s(sd.size());
+        std::vector<double> j(sd.size());
+        for (int d = 0; d < sd.size(); ++d) {
+            const Mat3 F = sd.deformationGradient(d, u_);
+            s[d] = cauchyOf(stress(F), F);
+            j[d] = F.determinant();
+        }
+        return std::make_pair(s, j);
+    };
+    auto dev = [&](const Mat3& F) { return m.stressDeviatoric(F); };
+    auto vol = [&](const Mat3& F) { return m.stressVolumetric(F); };
+    auto full = [&](const Mat3& F) { return m.firstPK(F); };
+
+    switch (options_.formulation) {
+        case Formulation::FEM_T4: {
+            const auto [s, j] = perDomain(main_, full);
+            sigma = s;
+            J = j;
+            break;
+        }
+        case Formulation::FS_FEM: {
+            const auto [s, j] = perDomain(main_, full);
+            for (int e = 0; e < ne; ++e) {
+                for (int f : elemFaces[e]) {
+                    sigma[e] += 0.25 * s[f];
+                    J[e] += 0.25 * j[f];
+                }
+            }
+            break;
+        }
+        case Formulation::NS_FEM: {
+            const auto [s, j] = perDomain(main_, full);
+            for (int e = 0; e < ne; ++e) {
+                for (int v : mesh_.elements()[e]) {
+                    sigma[e] += 0.25 * s[v];
+                    J[e] += 0.25 * j[v];
+                }
+            }
+            break;
+        }
+        case Formulation::Selective: {
+            const auto [sf, jf] = perDomain(main_, dev);
+            const auto [sn, jn] = perDomain(volumetric_, vol);
+            for (int e = 0; e < ne; ++e) {
+                for (int f : elemFaces[e]) sigma[e] += 0.25 * sf[f];
+                for (int v : mesh_.elements()[e]) {
+                    sigma[e] += 0.25 * sn[v];
+                    J[e] += 0.25 * jn[v];
+                }
+            }
+            break;
+        }
+    }
+}
+
+namespace {
+constexpr char kStateMagic[] = "smoothedSolid-state-1";
+}
+
+void ExplicitSolid::saveState(const std::string& fileName) const
+{
+    std::ofstream os(fileName, std::ios::binary);
+    if (!os) throw Error("cannot write state file '" + fileName + "'");
+    const std::int64_t n = mesh_.nNodes();
+    os.write(kStateMagic, sizeof kStateMagic);
+    os.write(reinterpret_cast<const char*>(&n), sizeof n);
+    os.write(reinterpret_cast<const char*>(&t_), sizeof t_);
+    os.write(reinterpret_cast<const char*>(&dtLast_), sizeof dtLast_);
+    os.write(reinterpret_cast<const char*>(&nSteps_), sizeof nSteps_);
+    for (const auto* field : {&u_, &vHalf_, &fext_}) {
+        os.write(reinterpret_cast<const char*>(field->data()),
+                 static_cast<std::streamsize>(sizeof(Vec3) * field->size()));
+    }
+    if (!os) throw Error("error while writing state file '" + fileName + "'");
+}
+
+void ExplicitSolid::loadState(const std::string& fileName)
+{
+    std::ifstream is(fileName, std::ios::binary);
+    if (!is) throw Error("cannot open state file '" + fileName + "'");
+    char magic[sizeof kStateMagic] = {};
+    is.read(magic, sizeof magic);
+    if (std::string(magic) != kStateMagic) {
+        throw Error("'" + fileName + "' is not a smoothedSolid state file");
+    }
+    std::int64_t n = 0;
+    is.read(reinterpret_cast<char*>(&n), sizeof n);
+    if (n != mesh_.nNodes()) {
+        throw Error("state file '" + fileName + "' is for a mesh of " + std::to_string(n) +
+                    " nodes, this solid has " + std::to_string(mesh_.nNodes()));
+    }
+    is.read(reinterpret_cast<char*>(&t_), sizeof t_);
+    is.read(reinterpret_cast<char*>(&dtLast_), sizeof dtLast_);
+    is.read(reinterpret_cast<char*>(&nSteps_), sizeof nSteps_);
+    for (auto* field : {&u_, &vHalf_, &fext_}) {
+        is.read(reinterpret_cast<char*>(field->data()),
+                static_cast<std::streamsize>(sizeof(Vec3) * field->size()));
+    }
+    if (!is) throw Error("state file '" + fileName + "' is truncated");
 }
 
 }  // namespace smoothedSolid

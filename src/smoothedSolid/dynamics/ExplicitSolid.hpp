@@ -6,6 +6,7 @@
 // force, optional mass-proportional damping for quasi-static runs.
 #pragma once
 
+#include "contact/PenaltyContact.hpp"
 #include "material/Material.hpp"
 #include "mesh/TetMesh.hpp"
 #include "smoothing/SmoothingDomains.hpp"
@@ -50,6 +51,17 @@ public:
     // Nodal external forces set by a caller (the FSI force comes in here);
     // held constant during advance()
     std::vector<Vec3>& externalForce() { return fext_; }
+    const std::vector<Vec3>& externalForce() const { return fext_; }
+
+    // --- contact (paper Eq. 43) ------------------------------------------
+    // Frictionless penalty contact between parts / within a part; the
+    // stable time step then accounts for the penalty springs
+    void enableContact(ContactOptions options = {});
+    // A rigid triangulated surface (e.g. a wall), normals toward the solid
+    void addRigidSurface(RigidSurface surface);
+    // Contact pressure per node and the largest penetration of the last step
+    const std::vector<double>& contactPressure() const { return contactPressure_; }
+    double maxPenetration() const { return maxPenetration_; }
 
     // Initial velocity field v0(X); only before the first step
     void setInitialVelocity(const VectorFunction& v0);
@@ -78,6 +90,16 @@ public:
     // Kinetic energy of velocity()
     double kineticEnergy() const;
 
+    // Cauchy stress and J per element, from the smoothing domains that
+    // overlap it (selective: deviatoric part from its 4 face domains,
+    // volumetric part from its 4 node domains)
+    void elementStress(std::vector<Mat3>& sigma, std::vector<double>& J) const;
+
+    // Full state (time, step counters, u, v, external force) for an exact
+    // restart; the file names the mesh size it belongs to
+    void saveState(const std::string& fileName) const;
+    void loadState(const std::string& fileName);
+
 private:
     struct Constraint {
         std::vector<int> nodes;
@@ -90,7 +112,7 @@ private:
         ScalarFunction p;
     };
 
-    void accelerationForces(std::vector<Vec3>& f) const;  // f_ext - f_int at t_
+    void accelerationForces(std::vector<Vec3>& f);  // f_ext - f_int (+ contact) at t_
     void applyConstraints(double dt);
 
     TetMesh mesh_;
@@ -106,6 +128,9 @@ private:
     mutable std::vector<Vec3> work_;
     std::vector<Constraint> constraints_;
     std::vector<Pressure> pressures_;
+    std::unique_ptr<PenaltyContact> contact_;
+    std::vector<double> contactPressure_;
+    double maxPenetration_ = 0;
     Vec3 bodyForce_ = Vec3::Zero();
     double t_ = 0, dtLast_ = 0, hMin_ = 0;
     long nSteps_ = 0;

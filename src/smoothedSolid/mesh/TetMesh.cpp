@@ -85,15 +85,19 @@ void TetMesh::build()
     std::unordered_map<std::uint64_t, int> index;
     index.reserve(static_cast<std::size_t>(ne) * 3);
     faces_.clear();
+    elementFaces_.assign(ne, {-1, -1, -1, -1});
     for (int e = 0; e < ne; ++e) {
-        for (const auto& lf : kTetFaces) {
+        for (int l = 0; l < 4; ++l) {
+            const auto& lf = kTetFaces[l];
             const Tri t{tets_[e][lf[0]], tets_[e][lf[1]], tets_[e][lf[2]]};
             const auto key = faceKey(t);
             auto it = index.find(key);
             if (it == index.end()) {
+                elementFaces_[e][l] = static_cast<int>(faces_.size());
                 index.emplace(key, static_cast<int>(faces_.size()));
                 faces_.push_back({t, e, -1});
             } else {
+                elementFaces_[e][l] = it->second;
                 Face& f = faces_[it->second];
                 if (f.neighbour >= 0) {
                     throw Error("TetMesh: a face of element " + std::to_string(e) +

@@ -47,6 +47,8 @@ public:
     const std::vector<Vec3>& coordinates() const { return X_; }
     const std::vector<Tet>& elements() const { return tets_; }
     const std::vector<Face>& faces() const { return faces_; }
+    // The 4 faces of each element (indices into faces())
+    const std::vector<std::array<int, 4>>& elementFaces() const { return elementFaces_; }
     // Indices into faces() of the boundary faces
     const std::vector<int>& boundaryFaces() const { return boundaryFaces_; }
     // Elements around each node (CSR)
@@ -80,6 +82,7 @@ private:
     std::vector<Tet> tets_;
     std::vector<Face> faces_;
     std::vector<int> boundaryFaces_;
+    std::vector<std::array<int, 4>> elementFaces_;
     std::vector<int> nodeElemStart_, nodeElem_;
     std::vector<int> elementPart_;
     int nParts_ = 0;

@@ -1,0 +1,64 @@
+// The case file of smoothedSolidRun: one keyword per line, '#' comments.
+//
+//   mesh          leaflet.msh                 gmsh file, relative to the case file
+//   box           nx ny nz  x0 y0 z0  x1 y1 z1  (or a structured box of tets)
+//   material      neoHookean mu 80 K 4e5 rho 1
+//                 mooneyRivlin c10 1000 c01 200 kappa 5e4 rho 1000   (or nu 0.49)
+//                 stVenantKirchhoff mu 0.5e6 nu 0.4 rho 1000          (or lambda)
+//   formulation   selective | FS-FEM | NS-FEM | FEM-T4
+//   fix           <nodeSet> [xyz | x | y | z | xy | ...]
+//   planeStrain   z                           fix that component everywhere
+//   bodyForce     gx gy gz [ramp T]           acceleration, ramped over T
+//   pressure      <faceSet> p [ramp T]        follower pressure
+//   traction      <faceSet> tx ty tz [ramp T] dead load per reference area
+//   damping       c                           mass-proportional [1/s]
+//   safety        0.8                         fraction of the stable step
+//   contact       [self]                      penalty contact between parts
+//   endTime       T
+//   writeInterval dt                          VTU output interval
+//   output        results                     output directory
+//   probe         A 0.6 0.2 0                 node nearest to the point;
+//                                             history in <output>/probes.dat
+//   steadyTolerance 1e-6                      stop when the probes' relative
+//                                             change per writeInterval is below
+#pragma once
+
+#include "Types.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace smoothedSolid {
+
+struct CaseEntry {
+    std::string keyword;
+    std::vector<std::string> args;
+    int line;
+};
+
+class CaseFile {
+public:
+    explicit CaseFile(const std::string& fileName);
+
+    const std::string& fileName() const { return file_; }
+    const std::string& directory() const { return dir_; }
+    const std::vector<CaseEntry>& entries() const { return entries_; }
+
+    // The single entry with this keyword; throws naming the file when
+    // missing (unless optional) or repeated
+    const CaseEntry* find(const std::string& keyword, bool optional = false) const;
+    std::vector<const CaseEntry*> all(const std::string& keyword) const;
+
+    // Argument i of an entry as a number / the value after 'name' in a
+    // "name value" list; errors name the file, line and keyword
+    double number(const CaseEntry& e, std::size_t i) const;
+    double named(const CaseEntry& e, const std::string& name, bool* found = nullptr) const;
+    [[noreturn]] void fail(const CaseEntry& e, const std::string& what) const;
+
+private:
+    std::string file_, dir_;
+    std::vector<CaseEntry> entries_;
+};
+
+}  // namespace smoothedSolid

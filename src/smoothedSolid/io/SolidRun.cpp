@@ -1,0 +1,264 @@
+#include "io/SolidRun.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+
+namespace smoothedSolid {
+
+namespace {
+
+std::array<bool, 3> componentMask(const CaseFile& c, const CaseEntry& e, std::size_t i)
+{
+    if (i >= e.args.size()) return {true, true, true};
+    std::array<bool, 3> m{false, false, false};
+    for (char ch : e.args[i]) {
+        if (ch < 'x' || ch > 'z') c.fail(e, "components must be letters of xyz");
+        m[ch - 'x'] = true;
+    }
+    return m;
+}
+
+std::shared_ptr<Material> makeMaterial(const CaseFile& c, const CaseEntry& e)
+{
+    if (e.args.empty()) c.fail(e, "expected a material type");
+    const std::string& type = e.args[0];
+    try {
+        if (type == "neoHookean") {
+            return std::make_shared<NeoHookean>(c.named(e, "mu"), c.named(e, "K"),
+                                                c.named(e, "rho"));
+        }
+        if (type == "mooneyRivlin") {
+            const double c10 = c.named(e, "c10"), c01 = c.named(e, "c01");
+            bool hasKappa = false;
+            double kappa = c.named(e, "kappa", &hasKappa);
+            if (!hasKappa) kappa = MooneyRivlin::kappaFromPoisson(c10, c01, c.named(e, "nu"));
+            return std::make_shared<MooneyRivlin>(c10, c01, kappa, c.named(e, "rho"));
+        }
+        if (type == "stVenantKirchhoff") {
+            const double mu = c.named(e, "mu");
+            bool hasLambda = false;
+            double lambda = c.named(e, "lambda", &hasLambda);
+            if (!hasLambda) {
+                const double nu = c.named(e, "nu");
+                if (!(nu > 0 && nu < 0.5)) c.fail(e, "nu must lie in (0, 0.5)");
+                lambda = 2 * mu * nu / (1 - 2 * nu);
+            }
+            return std::make_shared<StVenantKirchhoff>(mu, lambda, c.named(e, "rho"));
+        }
+    } catch (const Error& ex) {
+        c.fail(e, ex.what());
+    }
+    c.fail(e, "unknown material '" + type +
+                  "': use neoHookean, mooneyRivlin or stVenantKirchhoff");
+}
+
+TetMesh makeMesh(const CaseFile& c)
+{
+    const CaseEntry* m = c.find("mesh", true);
+    const CaseEntry* b = c.find("box", true);
+    if ((m != nullptr) == (b != nullptr)) {
+        throw Error(c.fileName() + ": give exactly one of 'mesh <file.msh>' and 'box ...'");
+    }
+    if (m) {
+        if (m->args.size() != 1) c.fail(*m, "expected one file name");
+        std::filesystem::path p(m->args[0]);
+        if (p.is_relative()) p = std::filesystem::path(c.directory()) / p;
+        return TetMesh::fromGmsh(p.string());
+    }
+    const int nx = int(c.number(*b, 0)), ny = int(c.number(*b, 1)), nz = int(c.number(*b, 2));
+    const Vec3 lo(c.number(*b, 3), c.number(*b, 4), c.number(*b, 5));
+    const Vec3 hi(c.number(*b, 6), c.number(*b, 7), c.number(*b, 8));
+    return TetMesh::box(nx, ny, nz, [&](const Vec3& s) {
+        return Vec3(lo + (hi - lo).cwiseProduct(s));
+    });
+}
+
+}  // namespace
+
+SolidRun::Ramp SolidRun::ramp(const CaseEntry& e, std::size_t first) const
+{
+    for (std::size_t i = first; i + 1 < e.args.size(); ++i) {
+        if (e.args[i] == "ramp") {
+            const double T = case_.number(e, i + 1);
+            if (!(T > 0)) case_.fail(e, "ramp time must be positive");
+            return [T](double t) { return std::min(1.0, t / T); };
+        }
+    }
+    return [](double) { return 1.0; };
+}
+
+SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
+{
+    TetMesh mesh = makeMesh(case_);
+    SolidOptions opt;
+    if (const auto* f = case_.find("formulation", true)) {
+        if (f->args.size() != 1) case_.fail(*f, "expected one formulation");
+        try {
+            opt.formulation = formulationFromString(f->args[0]);
+        } catch (const Error& ex) {
+            case_.fail(*f, ex.what());
+        }
+    }
+    if (const auto* s = case_.find("safety", true)) opt.safety = case_.number(*s, 0);
+    if (const auto* d = case_.find("damping", true)) opt.damping = case_.number(*d, 0);
+
+    if (case_.find("planeStrain", true)) {
+        std::vector<int> all(mesh.nNodes());
+        for (int i = 0; i < mesh.nNodes(); ++i) all[i] = i;
+        mesh.addNodeSet("__all", all);
+    }
+    solid_ = std::make_unique<ExplicitSolid>(std::move(mesh),
+                                             makeMaterial(case_, *case_.find("material")), opt);
+    ExplicitSolid& s = *solid_;
+
+    auto guarded = [&](const CaseEntry& e, auto f) {
+        try {
+            f();
+        } catch (const Error& ex) {
+            case_.fail(e, ex.what());
+        }
+    };
+    for (const auto* e : case_.all("fix")) {
+        if (e->args.empty()) case_.fail(*e, "expected a node set");
+        guarded(*e, [&] { s.fix(e->args[0], componentMask(case_, *e, 1)); });
+    }
+    if (const auto* e = case_.find("planeStrain", true)) {
+        s.fix("__all", componentMask(case_, *e, 0));
+    }
+    if (const auto* e = case_.find("bodyForce", true)) {
+        gravity_ = Vec3(case_.number(*e, 0), case_.number(*e, 1), case_.number(*e, 2));
+        gravityRamp_ = ramp(*e, 3);
+    }
+    for (const auto* e : case_.all("pressure")) {
+        if (e->args.size() < 2) case_.fail(*e, "expected <faceSet> <p>");
+        const double p = case_.number(*e, 1);
+        const Ramp r = ramp(*e, 2);
+        guarded(*e, [&] { s.addFollowerPressure(e->args[0], [p, r](double t) { return p * r(t); }); });
+    }
+    for (const auto* e : case_.all("traction")) {
+        if (e->args.size() < 4) case_.fail(*e, "expected <faceSet> <tx> <ty> <tz>");
+        const Vec3 tr(case_.number(*e, 1), case_.number(*e, 2), case_.number(*e, 3));
+        Traction t{std::vector<Vec3>(s.mesh().nNodes(), Vec3::Zero()), ramp(*e, 4)};
+        guarded(*e, [&] {
+            const auto& X = s.mesh().coordinates();
+            for (const Tri& f : s.mesh().faceSet(e->args[0])) {
+                const double A = 0.5 * (X[f[1]] - X[f[0]]).cross(X[f[2]] - X[f[0]]).norm();
+                for (int v : f) t.nodal[v] += tr * (A / 3.0);
+            }
+        });
+        tractions_.push_back(std::move(t));
+    }
+    if (const auto* e = case_.find("contact", true)) {
+        ContactOptions co;
+        co.selfContact = !e->args.empty() && e->args[0] == "self";
+        s.enableContact(co);
+    }
+
+    endTime_ = case_.number(*case_.find("endTime"), 0);
+    writeInterval_ = case_.number(*case_.find("writeInterval"), 0);
+    if (!(endTime_ > 0) || !(writeInterval_ > 0)) {
+        throw Error(case_.fileName() + ": endTime and writeInterval must be positive");
+    }
+    if (const auto* e = case_.find("steadyTolerance", true)) steadyTol_ = case_.number(*e, 0);
+    outputDir_ = "results";
+    if (const auto* e = case_.find("output", true)) outputDir_ = e->args.at(0);
+    if (std::filesystem::path(outputDir_).is_relative()) {
+        outputDir_ = (std::filesystem::path(case_.directory()) / outputDir_).string();
+    }
+    vtu_ = std::make_unique<VtuSeries>(outputDir_, "solid");
+
+    for (const auto* e : case_.all("probe")) {
+        if (e->args.size() != 4) case_.fail(*e, "expected <name> <x> <y> <z>");
+        const Vec3 p(case_.number(*e, 1), case_.number(*e, 2), case_.number(*e, 3));
+        int best = 0;
+        for (int i = 0; i < s.mesh().nNodes(); ++i) {
+            if ((s.mesh().coordinates()[i] - p).norm() <
+                (s.mesh().coordinates()[best] - p).norm())
+                best = i;
+        }
+        probeNames_.push_back(e->args[0]);
+        probeNodes_.push_back(best);
+    }
+    probes_.open(outputDir_ + "/probes.dat");
+    probes_ << "# time";
+    for (const auto& n : probeNames_) probes_ << "  " << n << "_ux " << n << "_uy " << n << "_uz";
+    probes_ << "\n" << std::setprecision(10);
+}
+
+void SolidRun::applyLoads()
+{
+    ExplicitSolid& s = *solid_;
+    const double t = s.time();
+    auto& f = s.externalForce();
+    std::fill(f.begin(), f.end(), Vec3::Zero());
+    for (const Traction& tr : tractions_) {
+        const double r = tr.s(t);
+        for (std::size_t i = 0; i < f.size(); ++i) f[i] += r * tr.nodal[i];
+    }
+    if (gravityRamp_) s.setBodyForce(gravityRamp_(t) * gravity_);
+}
+
+void SolidRun::writeProbes()
+{
+    probes_ << solid_->time();
+    for (int v : probeNodes_) {
+        const Vec3& u = solid_->displacement()[v];
+        probes_ << ' ' << u.x() << ' ' << u.y() << ' ' << u.z();
+    }
+    probes_ << '\n';
+}
+
+Vec3 SolidRun::probeDisplacement(std::size_t i) const
+{
+    return solid_->displacement()[probeNodes_.at(i)];
+}
+
+long SolidRun::run(std::ostream& log)
+{
+    ExplicitSolid& s = *solid_;
+    const double dt = s.stableTimeStep();
+    log << "smoothedSolidRun: " << s.mesh().nNodes() << " nodes, " << s.mesh().nElements()
+        << " tets, " << toString(s.options().formulation) << ", " << s.material().name()
+        << ", dt = " << dt << " s\n";
+    vtu_->write(s, {{"contactPressure", s.contactPressure().empty()
+                                            ? std::vector<double>(s.mesh().nNodes(), 0.0)
+                                            : s.contactPressure()}});
+    writeProbes();
+    std::vector<Vec3> last(probeNodes_.size(), Vec3::Zero());
+    double nextWrite = writeInterval_;
+    long steps = 0;
+    while (s.time() < endTime_ - 1e-12 * endTime_) {
+        applyLoads();
+        s.step(std::min(dt, endTime_ - s.time()));
+        ++steps;
+        if (steps % 20 == 0) writeProbes();
+        if (s.time() >= nextWrite - 1e-12 * endTime_) {
+            nextWrite += writeInterval_;
+            std::vector<double> cp = s.contactPressure();
+            cp.resize(s.mesh().nNodes(), 0.0);
+            vtu_->write(s, {{"contactPressure", cp}});
+            log << "t = " << s.time() << "  steps " << steps
+                << "  kinetic energy " << s.kineticEnergy();
+            double change = 0, size = 0;
+            for (std::size_t i = 0; i < probeNodes_.size(); ++i) {
+                const Vec3 u = probeDisplacement(i);
+                log << "  " << probeNames_[i] << " (" << u.x() << ", " << u.y() << ", " << u.z()
+                    << ")";
+                change = std::max(change, (u - last[i]).norm());
+                size = std::max(size, u.norm());
+                last[i] = u;
+            }
+            log << "\n";
+            if (steadyTol_ > 0 && size > 0 && change < steadyTol_ * size) {
+                log << "steady: probe change " << change / size << " < " << steadyTol_ << "\n";
+                break;
+            }
+        }
+    }
+    writeProbes();
+    probes_.flush();
+    return steps;
+}
+
+}  // namespace smoothedSolid

@@ -1,0 +1,35 @@
+// VTK XML output of the solid: one binary .vtu file per written time and a
+// .pvd collection, opened by ParaView, VisIt or Python (meshio, vtk).
+#pragma once
+
+#include "dynamics/ExplicitSolid.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace smoothedSolid {
+
+class VtuSeries {
+public:
+    // Files <directory>/<name>_<index>.vtu and <directory>/<name>.pvd
+    VtuSeries(std::string directory, std::string name);
+
+    // Extra nodal fields, e.g. "contactPressure" -> one value per node,
+    // or 3 per node for vectors
+    using NodalFields = std::map<std::string, std::vector<double>>;
+
+    // Write the current configuration with displacement, velocity, external
+    // force, Cauchy stress, von Mises, maximum principal stress and J
+    void write(const ExplicitSolid& solid, const NodalFields& extra = {});
+
+    int count() const { return static_cast<int>(times_.size()); }
+
+private:
+    void writePvd() const;
+
+    std::string directory_, name_;
+    std::vector<std::pair<double, std::string>> times_;
+};
+
+}  // namespace smoothedSolid
