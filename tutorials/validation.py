@@ -76,3 +76,12 @@ def finish():
         print("FAILED: " + ", ".join(_failed))
         sys.exit(1)
     print("all checks passed")
+
+
+def condition(name, value, text, ok):
+    """A measured value against a stated bound (text says which)."""
+    print("%-28s measured %-14.6g %s  %s" % (name + ":", value, text,
+                                            "PASS" if ok else "FAIL"))
+    if not ok:
+        _failed.append(name)
+    return ok

@@ -9,7 +9,7 @@ namespace smoothedSolid {
 
 namespace {
 const std::set<std::string> kKeywords = {
-    "mesh",   "box",      "material", "formulation", "fix",           "planeStrain",
+    "mesh",   "box",      "hex",      "material", "formulation", "fix",           "planeStrain",
     "bodyForce", "pressure", "traction", "damping",  "safety",        "contact",
     "endTime", "writeInterval", "output", "probe",   "steadyTolerance"};
 }

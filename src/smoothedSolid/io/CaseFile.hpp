@@ -2,6 +2,10 @@
 //
 //   mesh          leaflet.msh                 gmsh file, relative to the case file
 //   box           nx ny nz  x0 y0 z0  x1 y1 z1  (or a structured box of tets)
+//   hex           nx ny nz  p0 ... p7         (or a trilinear hexahedron of tets,
+//                                             corners ordered as VTK's hexahedron)
+//                 box and hex define node/face sets xmin xmax ymin ymax zmin
+//                 zmax (the faces of the parameter cube)
 //   material      neoHookean mu 80 K 4e5 rho 1
 //                 mooneyRivlin c10 1000 c01 200 kappa 5e4 rho 1000   (or nu 0.49)
 //                 stVenantKirchhoff mu 0.5e6 nu 0.4 rho 1000          (or lambda)

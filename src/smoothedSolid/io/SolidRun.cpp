@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <algorithm>
 #include <iomanip>
 
 namespace smoothedSolid {
@@ -57,8 +58,10 @@ TetMesh makeMesh(const CaseFile& c)
 {
     const CaseEntry* m = c.find("mesh", true);
     const CaseEntry* b = c.find("box", true);
-    if ((m != nullptr) == (b != nullptr)) {
-        throw Error(c.fileName() + ": give exactly one of 'mesh <file.msh>' and 'box ...'");
+    const CaseEntry* h = c.find("hex", true);
+    if ((m != nullptr) + (b != nullptr) + (h != nullptr) != 1) {
+        throw Error(c.fileName() +
+                    ": give exactly one of 'mesh <file.msh>', 'box ...' and 'hex ...'");
     }
     if (m) {
         if (m->args.size() != 1) c.fail(*m, "expected one file name");
@@ -66,11 +69,26 @@ TetMesh makeMesh(const CaseFile& c)
         if (p.is_relative()) p = std::filesystem::path(c.directory()) / p;
         return TetMesh::fromGmsh(p.string());
     }
-    const int nx = int(c.number(*b, 0)), ny = int(c.number(*b, 1)), nz = int(c.number(*b, 2));
-    const Vec3 lo(c.number(*b, 3), c.number(*b, 4), c.number(*b, 5));
-    const Vec3 hi(c.number(*b, 6), c.number(*b, 7), c.number(*b, 8));
+    const CaseEntry& e = b ? *b : *h;
+    const int nx = int(c.number(e, 0)), ny = int(c.number(e, 1)), nz = int(c.number(e, 2));
+    if (b) {
+        if (b->args.size() != 9) c.fail(*b, "expected nx ny nz x0 y0 z0 x1 y1 z1");
+        const Vec3 lo(c.number(*b, 3), c.number(*b, 4), c.number(*b, 5));
+        const Vec3 hi(c.number(*b, 6), c.number(*b, 7), c.number(*b, 8));
+        return TetMesh::box(nx, ny, nz, [&](const Vec3& s) {
+            return Vec3(lo + (hi - lo).cwiseProduct(s));
+        });
+    }
+    if (h->args.size() != 27) c.fail(*h, "expected nx ny nz and 8 corner points");
+    Vec3 P[8];
+    for (int k = 0; k < 8; ++k) {
+        P[k] = Vec3(c.number(*h, 3 + 3 * k), c.number(*h, 4 + 3 * k), c.number(*h, 5 + 3 * k));
+    }
+    // trilinear map of the unit cube, VTK hexahedron corner order
     return TetMesh::box(nx, ny, nz, [&](const Vec3& s) {
-        return Vec3(lo + (hi - lo).cwiseProduct(s));
+        const double x = s.x(), y = s.y(), z = s.z();
+        return Vec3((1 - z) * ((1 - y) * ((1 - x) * P[0] + x * P[1]) + y * ((1 - x) * P[3] + x * P[2])) +
+                    z * ((1 - y) * ((1 - x) * P[4] + x * P[5]) + y * ((1 - x) * P[7] + x * P[6])));
     });
 }
 
@@ -171,19 +189,35 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
     for (const auto* e : case_.all("probe")) {
         if (e->args.size() != 4) case_.fail(*e, "expected <name> <x> <y> <z>");
         const Vec3 p(case_.number(*e, 1), case_.number(*e, 2), case_.number(*e, 3));
-        int best = 0;
-        for (int i = 0; i < s.mesh().nNodes(); ++i) {
-            if ((s.mesh().coordinates()[i] - p).norm() <
-                (s.mesh().coordinates()[best] - p).norm())
-                best = i;
+        const auto& X = s.mesh().coordinates();
+        Probe best{};
+        double bestMin = -1e300;
+        for (int el = 0; el < s.mesh().nElements(); ++el) {
+            const Tet& t = s.mesh().elements()[el];
+            Mat3 A;
+            A.col(0) = X[t[1]] - X[t[0]];
+            A.col(1) = X[t[2]] - X[t[0]];
+            A.col(2) = X[t[3]] - X[t[0]];
+            const Vec3 l = A.inverse() * (p - X[t[0]]);
+            const std::array<double, 4> w{1 - l.sum(), l.x(), l.y(), l.z()};
+            const double m = *std::min_element(w.begin(), w.end());
+            if (m > bestMin) {
+                bestMin = m;
+                best = {t, w};
+            }
+        }
+        if (bestMin < -1e-6) {
+            case_.fail(*e, "the point lies outside the mesh");
         }
         probeNames_.push_back(e->args[0]);
-        probeNodes_.push_back(best);
+        probes_.push_back(best);
     }
-    probes_.open(outputDir_ + "/probes.dat");
-    probes_ << "# time";
-    for (const auto& n : probeNames_) probes_ << "  " << n << "_ux " << n << "_uy " << n << "_uz";
-    probes_ << "\n" << std::setprecision(10);
+    probeFile_.open(outputDir_ + "/probes.dat");
+    probeFile_ << "# time";
+    for (const auto& n : probeNames_) {
+        probeFile_ << "  " << n << "_ux " << n << "_uy " << n << "_uz";
+    }
+    probeFile_ << "\n" << std::setprecision(10);
 }
 
 void SolidRun::applyLoads()
@@ -201,17 +235,20 @@ void SolidRun::applyLoads()
 
 void SolidRun::writeProbes()
 {
-    probes_ << solid_->time();
-    for (int v : probeNodes_) {
-        const Vec3& u = solid_->displacement()[v];
-        probes_ << ' ' << u.x() << ' ' << u.y() << ' ' << u.z();
+    probeFile_ << solid_->time();
+    for (std::size_t i = 0; i < probes_.size(); ++i) {
+        const Vec3 u = probeDisplacement(i);
+        probeFile_ << ' ' << u.x() << ' ' << u.y() << ' ' << u.z();
     }
-    probes_ << '\n';
+    probeFile_ << '\n';
 }
 
 Vec3 SolidRun::probeDisplacement(std::size_t i) const
 {
-    return solid_->displacement()[probeNodes_.at(i)];
+    const Probe& p = probes_.at(i);
+    Vec3 u = Vec3::Zero();
+    for (int a = 0; a < 4; ++a) u += p.w[a] * solid_->displacement()[p.nodes[a]];
+    return u;
 }
 
 long SolidRun::run(std::ostream& log)
@@ -220,12 +257,12 @@ long SolidRun::run(std::ostream& log)
     const double dt = s.stableTimeStep();
     log << "smoothedSolidRun: " << s.mesh().nNodes() << " nodes, " << s.mesh().nElements()
         << " tets, " << toString(s.options().formulation) << ", " << s.material().name()
-        << ", dt = " << dt << " s\n";
+        << ", dt = " << dt << " s" << std::endl;
     vtu_->write(s, {{"contactPressure", s.contactPressure().empty()
                                             ? std::vector<double>(s.mesh().nNodes(), 0.0)
                                             : s.contactPressure()}});
     writeProbes();
-    std::vector<Vec3> last(probeNodes_.size(), Vec3::Zero());
+    std::vector<Vec3> last(probes_.size(), Vec3::Zero());
     double nextWrite = writeInterval_;
     long steps = 0;
     while (s.time() < endTime_ - 1e-12 * endTime_) {
@@ -241,7 +278,7 @@ long SolidRun::run(std::ostream& log)
             log << "t = " << s.time() << "  steps " << steps
                 << "  kinetic energy " << s.kineticEnergy();
             double change = 0, size = 0;
-            for (std::size_t i = 0; i < probeNodes_.size(); ++i) {
+            for (std::size_t i = 0; i < probes_.size(); ++i) {
                 const Vec3 u = probeDisplacement(i);
                 log << "  " << probeNames_[i] << " (" << u.x() << ", " << u.y() << ", " << u.z()
                     << ")";
@@ -249,7 +286,7 @@ long SolidRun::run(std::ostream& log)
                 size = std::max(size, u.norm());
                 last[i] = u;
             }
-            log << "\n";
+            log << std::endl;
             if (steadyTol_ > 0 && size > 0 && change < steadyTol_ * size) {
                 log << "steady: probe change " << change / size << " < " << steadyTol_ << "\n";
                 break;
@@ -257,7 +294,7 @@ long SolidRun::run(std::ostream& log)
         }
     }
     writeProbes();
-    probes_.flush();
+    probeFile_.flush();
     return steps;
 }
 

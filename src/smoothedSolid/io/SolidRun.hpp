@@ -35,7 +35,13 @@ private:
     CaseFile case_;
     std::unique_ptr<ExplicitSolid> solid_;
     std::vector<std::string> probeNames_;
-    std::vector<int> probeNodes_;
+    // Probe: element containing the point (reference configuration) and the
+    // point's barycentric weights there
+    struct Probe {
+        Tet nodes;
+        std::array<double, 4> w;
+    };
+    std::vector<Probe> probes_;
     struct Traction {
         std::vector<Vec3> nodal;  // at full load
         Ramp s;
@@ -46,7 +52,7 @@ private:
     double endTime_ = 0, writeInterval_ = 0, steadyTol_ = 0;
     std::string outputDir_;
     std::unique_ptr<VtuSeries> vtu_;
-    std::ofstream probes_;
+    std::ofstream probeFile_;
 };
 
 }  // namespace smoothedSolid
