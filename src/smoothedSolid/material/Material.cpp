@@ -71,10 +71,11 @@ Mat3 MooneyRivlin::stressDeviatoric(const Mat3& F) const
     const double J = jacobian(F, "MooneyRivlin");
     const Mat3 C = F.transpose() * F;
     const double I1 = C.trace();
-    const double I2 = 0.5 * (I1 * I1 - (C * C).trace());
+    const double I2 = 0.5 * (I1 * I1 - C.squaredNorm());  // C symmetric: tr(C^2) = |C|^2
     const Mat3 FinvT = F.inverse().transpose();
-    const double J23 = std::pow(J, -2.0 / 3.0);
-    const double J43 = J23 * J23;
+    const double Jm13 = 1.0 / std::cbrt(J);
+    const double J23 = Jm13 * Jm13;  // J^(-2/3)
+    const double J43 = J23 * J23;    // J^(-4/3)
     return c10_ * J23 * (2.0 * F - (2.0 / 3.0) * I1 * FinvT) +
            c01_ * J43 * (2.0 * (I1 * F - F * C) - (4.0 / 3.0) * I2 * FinvT);
 }
