@@ -26,6 +26,35 @@ ExplicitSolid::ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> mater
             break;
     }
 
+    const int ne = mesh_.nElements();
+    elemGrad_.resize(ne);
+    quarterVolume_.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+        elemGrad_[e] = elementGradients(mesh_, e);
+        quarterVolume_[e] = 0.25 * mesh_.elementVolume(e);
+    }
+    faceWeight_.resize(mesh_.faces().size());
+    for (std::size_t f = 0; f < mesh_.faces().size(); ++f) {
+        const Face& fc = mesh_.faces()[f];
+        const double vo = quarterVolume_[fc.owner];
+        const double vn = fc.neighbour >= 0 ? quarterVolume_[fc.neighbour] : 0.0;
+        faceWeight_[f] = {vo / (vo + vn), vn / (vo + vn)};
+    }
+    {
+        const auto& start = mesh_.nodeElementStart();
+        const auto& elems = mesh_.nodeElements();
+        nodeWeight_.resize(elems.size());
+        for (int k = 0; k < mesh_.nNodes(); ++k) {
+            double V = 0;
+            for (int i = start[k]; i < start[k + 1]; ++i) V += quarterVolume_[elems[i]];
+            for (int i = start[k]; i < start[k + 1]; ++i) {
+                nodeWeight_[i] = quarterVolume_[elems[i]] / V;
+            }
+        }
+    }
+    Fe_.resize(ne);
+    Pbar_.resize(ne);
+
     const int n = mesh_.nNodes();
     mass_.assign(n, 0.0);
     hMin_ = std::numeric_limits<double>::max();
@@ -91,35 +120,79 @@ void ExplicitSolid::addRigidSurface(RigidSurface surface)
 
 std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
 {
-    std::vector<Vec3> f(mesh_.nNodes(), Vec3::Zero());
     const Material& m = *material_;
-    auto jacobianOk = [&](const Mat3& F, int d, const char* kind) {
+    const auto& tets = mesh_.elements();
+    const int ne = mesh_.nElements();
+
+    // Element deformation gradients F_e = I + sum_a u_a (x) g_ea
+    for (int e = 0; e < ne; ++e) {
+        const Tet& t = tets[e];
+        const auto& g = elemGrad_[e];
+        Mat3 F = Mat3::Identity();
+        for (int a = 0; a < 4; ++a) F.noalias() += u[t[a]] * g.row(a);
+        Fe_[e] = F;
+    }
+    for (Mat3& P : Pbar_) P.setZero();
+
+    auto checked = [&](const Mat3& F, int d, const char* kind) -> const Mat3& {
         if (!(F.determinant() > 0)) {
             throw Error("inverted material in " + std::string(kind) + " smoothing domain " +
                         std::to_string(d) + " at t = " + std::to_string(t_) +
                         " (det F = " + std::to_string(F.determinant()) +
                         "): the time step or the load is too large");
         }
+        return F;
     };
-    if (options_.formulation == Formulation::Selective) {
-        // Sect. 3.2: deviatoric stress on face-based domains, volumetric
-        // stress on node-based domains
-        for (int d = 0; d < main_.size(); ++d) {
-            const Mat3 F = main_.deformationGradient(d, u);
-            jacobianOk(F, d, "face");
-            main_.addInternalForce(d, m.stressDeviatoric(F), f);
+    // Face domains (Eq. 22 on the face-based domains): F_f from the one or
+    // two elements sharing f; P_f goes back to them with weight V_e/4
+    auto faces = [&](auto stress) {
+        const auto& fs = mesh_.faces();
+        for (std::size_t f = 0; f < fs.size(); ++f) {
+            const Face& fc = fs[f];
+            const auto& w = faceWeight_[f];
+            Mat3 F = w[0] * Fe_[fc.owner];
+            if (fc.neighbour >= 0) F.noalias() += w[1] * Fe_[fc.neighbour];
+            const Mat3 P = stress(checked(F, int(f), "face"));
+            Pbar_[fc.owner].noalias() += quarterVolume_[fc.owner] * P;
+            if (fc.neighbour >= 0) Pbar_[fc.neighbour].noalias() += quarterVolume_[fc.neighbour] * P;
         }
-        for (int d = 0; d < volumetric_.size(); ++d) {
-            const Mat3 F = volumetric_.deformationGradient(d, u);
-            jacobianOk(F, d, "node");
-            volumetric_.addInternalForce(d, m.stressVolumetric(F), f);
+    };
+    // Node domains: F_k from the elements around k, P_k back to them
+    auto nodes = [&](auto stress) {
+        const auto& start = mesh_.nodeElementStart();
+        const auto& elems = mesh_.nodeElements();
+        for (int k = 0; k < mesh_.nNodes(); ++k) {
+            Mat3 F = Mat3::Zero();
+            for (int i = start[k]; i < start[k + 1]; ++i) F.noalias() += nodeWeight_[i] * Fe_[elems[i]];
+            const Mat3 P = stress(checked(F, k, "node"));
+            for (int i = start[k]; i < start[k + 1]; ++i) {
+                Pbar_[elems[i]].noalias() += quarterVolume_[elems[i]] * P;
+            }
         }
-    } else {
-        for (int d = 0; d < main_.size(); ++d) {
-            const Mat3 F = main_.deformationGradient(d, u);
-            jacobianOk(F, d, "smoothing");
-            main_.addInternalForce(d, m.firstPK(F), f);
-        }
+    };
+    auto full = [&](const Mat3& F) { return m.firstPK(F); };
+
+    switch (options_.formulation) {
+        case Formulation::FEM_T4:
+            for (int e = 0; e < ne; ++e) Pbar_[e] = 4.0 * quarterVolume_[e] * full(checked(Fe_[e], e, "element"));
+            break;
+        case Formulation::FS_FEM: faces(full); break;
+        case Formulation::NS_FEM: nodes(full); break;
+        case Formulation::Selective:
+            // Sect. 3.2: deviatoric stress on face-based domains, volumetric
+            // stress on node-based domains
+            faces([&](const Mat3& F) { return m.stressDeviatoric(F); });
+            nodes([&](const Mat3& F) { return m.stressVolumetric(F); });
+            break;
+    }
+
+    // f_I = sum_e Pbar_e g_eI (Eq. 31 with the first Piola-Kirchhoff stress)
+    std::vector<Vec3> f(mesh_.nNodes(), Vec3::Zero());
+    for (int e = 0; e < ne; ++e) {
+        const Tet& t = tets[e];
+        const auto& g = elemGrad_[e];
+        const Mat3& P = Pbar_[e];
+        for (int a = 0; a < 4; ++a) f[t[a]].noalias() += P * g.row(a).transpose();
     }
     return f;
 }

@@ -120,8 +120,19 @@ private:
     SolidOptions options_;
 
     // Smoothing domains: full stress on 'main_'; with the selective scheme
-    // deviatoric stress on main_ (faces) and volumetric on 'volumetric_'
+    // deviatoric stress on main_ (faces) and volumetric on 'volumetric_'.
+    // Used for energies and stress output; the internal force uses the
+    // element-wise form below (same result, fewer operations).
     SmoothingDomains main_, volumetric_;
+
+    // Element-wise form of the smoothing (linear tets): a domain's smoothed
+    // gradient is the weighted mean of its elements' gradients, so
+    //   F_domain = sum_e w_e F_e,   f_I = sum_e (sum_domains (V_e/4) P_d) g_eI
+    std::vector<Eigen::Matrix<double, 4, 3>> elemGrad_;
+    std::vector<double> quarterVolume_;              // V_e/4
+    std::vector<std::array<double, 2>> faceWeight_;  // owner, neighbour
+    std::vector<double> nodeWeight_;                 // per mesh.nodeElements() entry
+    mutable std::vector<Mat3> Fe_, Pbar_;
 
     std::vector<double> mass_;
     std::vector<Vec3> u_, vHalf_, fext_;
