@@ -42,13 +42,6 @@ struct SmoothingDomains {
         for (int k = start[d]; k < start[d + 1]; ++k) F += u[node[k]] * grad[k].transpose();
         return F;
     }
-
-    // f_I += V_d P b_I: internal force of domain d (Eq. 31 written with the
-    // first Piola-Kirchhoff stress: f_int = int P grad Phi dV)
-    void addInternalForce(int d, const Mat3& P, std::vector<Vec3>& f) const
-    {
-        for (int k = start[d]; k < start[d + 1]; ++k) f[node[k]] += volume[d] * (P * grad[k]);
-    }
 };
 
 SmoothingDomains elementDomains(const TetMesh& mesh);
