@@ -44,30 +44,80 @@ private:
     std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
 
-// Gap of p against triangle (a, b, c) and barycentric weights of the
-// projection; false when the projection falls outside the triangle
-bool project(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double& gap,
-             Vec3& n, double w[3])
+// Closest point of triangle (a, b, c) to p as barycentric weights w
+// (Ericson, Real-Time Collision Detection, 2005, Sect. 5.1.5): inside the
+// face, on an edge or at a vertex
+void closestPoint(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double w[3])
 {
-    n = (b - a).cross(c - a);
-    const double twiceArea = n.norm();
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) { w[0] = 1, w[1] = 0, w[2] = 0; return; }
+    const Vec3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) { w[0] = 0, w[1] = 1, w[2] = 0; return; }
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        const double v = d1 / (d1 - d3);
+        w[0] = 1 - v, w[1] = v, w[2] = 0;
+        return;
+    }
+    const Vec3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) { w[0] = 0, w[1] = 0, w[2] = 1; return; }
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        const double v = d2 / (d2 - d6);
+        w[0] = 1 - v, w[1] = 0, w[2] = v;
+        return;
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        const double v = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        w[0] = 0, w[1] = 1 - v, w[2] = v;
+        return;
+    }
+    const double denom = 1.0 / (va + vb + vc);
+    w[1] = vb * denom, w[2] = vc * denom, w[0] = 1 - w[1] - w[2];
+}
+
+// Distance of p to triangle (a, b, c): closest point q (weights w), gap
+// g = n.(p - q) along the unit face normal n (negative: behind the face) and
+// the lateral offset l = |(p - q) - g n|, non-zero when p lies outside the
+// triangle's normal prism (beyond an edge). False for a degenerate triangle.
+struct Proximity {
+    double distance, gap, lateral;
+    Vec3 normal;
+    double w[3];
+};
+
+bool proximity(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Proximity& r)
+{
+    r.normal = (b - a).cross(c - a);
+    const double twiceArea = r.normal.norm();
     if (twiceArea <= 0) return false;
-    n /= twiceArea;
-    gap = (p - a).dot(n);
-    const Vec3 q = p - gap * n;
-    w[0] = (b - q).cross(c - q).dot(n) / twiceArea;
-    w[1] = (c - q).cross(a - q).dot(n) / twiceArea;
-    w[2] = 1.0 - w[0] - w[1];
-    const double tol = -1e-12;
-    return w[0] >= tol && w[1] >= tol && w[2] >= tol;
+    r.normal /= twiceArea;
+    closestPoint(p, a, b, c, r.w);
+    const Vec3 d = p - (r.w[0] * a + r.w[1] * b + r.w[2] * c);
+    r.distance = d.norm();
+    r.gap = d.dot(r.normal);
+    r.lateral = (d - r.gap * r.normal).norm();
+    return true;
 }
 
 }  // namespace
 
 PenaltyContact::PenaltyContact(const TetMesh& mesh, double waveModulus,
-                               const std::vector<double>& mass, ContactOptions options)
+                               const std::vector<double>& mass, double dtElement,
+                               ContactOptions options)
     : options_(options), mass_(mass)
 {
+    if (!(options_.stepFraction > 0 && options_.stepFraction < 1)) {
+        throw Error("contact: the stable step fraction must lie in (0, 1), not " +
+                    std::to_string(options_.stepFraction));
+    }
+    if (!(options_.penaltyScale > 0)) throw Error("contact: the penalty scale must be positive");
+    const double gamma = 1.0 / (options_.stepFraction * options_.stepFraction) - 1.0;
+    budget_ = gamma * 4.0 / (dtElement * dtElement);
     const int nn = mesh.nNodes();
     const auto& X = mesh.coordinates();
     hMin_ = std::numeric_limits<double>::max();
@@ -126,16 +176,9 @@ void PenaltyContact::addRigidSurface(RigidSurface surface)
     rigid_.push_back(std::move(surface));
 }
 
-double PenaltyContact::stableTimeStepFactor(double dtElement) const
-{
-    double worst = 0;
-    for (int v : slaveNodes_) worst = std::max(worst, k_[v] / mass_[v]);
-    // omega^2 adds up: omega_total^2 = omega_e^2 + k/m with omega_e = 2/dt_e
-    return 1.0 / std::sqrt(1.0 + worst * dtElement * dtElement / 4.0);
-}
-
 double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& x,
-                                 std::vector<Vec3>& f, std::vector<double>& pressure) const
+                                 const std::vector<Vec3>& velocity, std::vector<Vec3>& f,
+                                 std::vector<double>& pressure) const
 {
     pressure.assign(mesh_.nNodes(), 0.0);
     const auto& bfaces = mesh_.boundaryFaces();
@@ -197,15 +240,19 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
     }
     for (int p : slaveNodes_) nodeNormal[p].normalize();
 
-    double maxPenetration = 0;
+    pairs_.clear();
     for (int p : slaveNodes_) {
         const std::vector<int>* cands = hash.query(x[p]);
         if (!cands) continue;
-        // deepest valid contact of this node
-        double best = 0;
+        // Closest facing triangle (distance to its closest point). The gap
+        // is measured along its normal, and the force fades out linearly
+        // with the lateral offset over the search depth: continuous where
+        // the node slides over an edge of the other surface, whether that
+        // edge is a crease (a pressed plate makes a bowl, whose creases a
+        // penetrating node can lie beyond) or the body's edge, and a node
+        // exactly above an edge or vertex (matching meshes) is held.
+        Proximity bestP{depth_, 0, 0, Vec3::Zero(), {0, 0, 0}};
         int bestId = 0;
-        Vec3 bestN;
-        double bestW[3] = {0, 0, 0};
         for (int id : *cands) {
             if (id >= 0) {
                 const Tri& t = mesh_.faces()[bfaces[id]].nodes;
@@ -221,28 +268,63 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
                         continue;
                 }
             }
-            Vec3 a, b, c, n;
+            Vec3 a, b, c;
             triangle(id, a, b, c);
-            double g, w[3];
-            if (!project(x[p], a, b, c, g, n, w)) continue;
-            if (nodeNormal[p].dot(n) > -options_.facingCosine) continue;
-            if (g < best && g > -depth_) {
-                best = g;
+            Proximity r;
+            if (!proximity(x[p], a, b, c, r)) continue;
+            if (nodeNormal[p].dot(r.normal) > -options_.facingCosine) continue;
+            if (r.distance < bestP.distance) {
+                bestP = r;
                 bestId = id;
-                bestN = n;
-                std::copy(w, w + 3, bestW);
             }
         }
-        if (best < 0) {
-            const Vec3 fc = -k_[p] * best * bestN;  // pushes p out along n
-            f[p] += fc;
-            if (bestId >= 0) {
-                const Tri& t = mesh_.faces()[bfaces[bestId]].nodes;
-                for (int i = 0; i < 3; ++i) f[t[i]] -= bestW[i] * fc;
-            }
-            pressure[p] += fc.norm() / area_[p];
-            maxPenetration = std::max(maxPenetration, -best);
+        const double fade = 1.0 - bestP.lateral / depth_;
+        if (bestP.gap < 0 && fade > 0) {
+            pairs_.push_back({p, bestId, k_[p] * fade, bestP.gap, bestP.normal,
+                              {bestP.w[0], bestP.w[1], bestP.w[2]}});
         }
+    }
+
+    // Limit the stiffness where a node's Gershgorin bound would exceed the
+    // budget (see the header): load_i = (1/m_i) sum_pairs k |b_i| sum_j |b_j|
+    load_.assign(mesh_.nNodes(), 0.0);
+    auto nodesOf = [&](const Pair& c, int v[4], double b[4]) {
+        v[0] = c.node, b[0] = 1;
+        if (c.id < 0) return 1;
+        const Tri& t = mesh_.faces()[bfaces[c.id]].nodes;
+        for (int i = 0; i < 3; ++i) v[i + 1] = t[i], b[i + 1] = c.w[i];
+        return 4;
+    };
+    for (const Pair& c : pairs_) {
+        int v[4];
+        double b[4];
+        const int n = nodesOf(c, v, b);
+        const double sum = n == 1 ? 1.0 : 2.0;  // 1 + sum of barycentric weights
+        for (int i = 0; i < n; ++i) load_[v[i]] += c.k * b[i] * sum / mass_[v[i]];
+    }
+    double maxPenetration = 0;
+    for (Pair& c : pairs_) {
+        int v[4];
+        double b[4];
+        const int n = nodesOf(c, v, b);
+        double scale = 1.0;
+        for (int i = 0; i < n; ++i) {
+            if (b[i] > 0 && load_[v[i]] > budget_) scale = std::min(scale, budget_ / load_[v[i]]);
+        }
+        // Spring and normal dashpot on the relative normal velocity
+        // (critical damping ratio zeta of the pair's spring with the
+        // reduced mass), never pulling: f_n = max(0, -k g - c_d v_n)
+        const double k = scale * c.k;
+        double vn = 0, mT = 0;
+        for (int i = 0; i < n; ++i) vn += (i == 0 ? 1.0 : -b[i]) * velocity[v[i]].dot(c.direction);
+        for (int i = 1; i < n; ++i) mT += b[i] * mass_[v[i]];
+        const double mp = mass_[c.node];
+        const double mEff = n == 1 ? mp : mp * mT / (mp + mT);
+        const double fn = std::max(0.0, -k * c.gap - 2.0 * options_.dampingRatio * std::sqrt(k * mEff) * vn);
+        const Vec3 fc = fn * c.direction;  // pushes p out
+        for (int i = 0; i < n; ++i) f[v[i]] += (i == 0 ? 1.0 : -b[i]) * fc;
+        pressure[c.node] += fc.norm() / area_[c.node];
+        maxPenetration = std::max(maxPenetration, -c.gap);
     }
     return maxPenetration;
 }

@@ -100,14 +100,16 @@ double ExplicitSolid::stableTimeStep() const
 {
     const double c = std::sqrt(material_->waveModulus() / material_->density());
     const double dt = options_.safety * hMin_ / c;
-    return contact_ ? dt * contact_->stableTimeStepFactor(hMin_ / c) : dt;
+    return contact_ ? dt * contact_->stableTimeStepFactor() : dt;
 }
 
 void ExplicitSolid::enableContact(ContactOptions options)
 {
     std::vector<RigidSurface> keep;
     if (contact_) keep = contact_->rigidSurfaces();
-    contact_ = std::make_unique<PenaltyContact>(mesh_, material_->waveModulus(), mass_, options);
+    const double c = std::sqrt(material_->waveModulus() / material_->density());
+    contact_ = std::make_unique<PenaltyContact>(mesh_, material_->waveModulus(), mass_, hMin_ / c,
+                                                options);
     for (auto& s : keep) contact_->addRigidSurface(std::move(s));
     contactPressure_.assign(mesh_.nNodes(), 0.0);
 }
@@ -261,7 +263,8 @@ void ExplicitSolid::accelerationForces(std::vector<Vec3>& f)
     }
 
     if (contact_) {
-        maxPenetration_ = contact_->addForces(mesh_, currentCoordinates(), f, contactPressure_);
+        maxPenetration_ = contact_->addForces(mesh_, currentCoordinates(), vHalf_, f,
+                                              contactPressure_);
     }
 }
 
