@@ -1,6 +1,7 @@
 // Benchmark (not a test): time of one explicit sub-step of the selective
 // FS/NS-FEM per tetrahedron, on structured box meshes of about 10k, 100k and
-// 1M tets, against FEM-T4 on the same mesh.
+// 1M tets, against FEM-T4 on the same mesh, and with self contact switched
+// on (every boundary node searched against the boundary triangles each step).
 //   smoothedSolidBench [maxTets]     (default 1.1e6)
 #include "dynamics/ExplicitSolid.hpp"
 
@@ -12,7 +13,7 @@ using namespace smoothedSolid;
 
 namespace {
 
-double nsPerTetStep(Formulation form, int n, int* tetsOut)
+double nsPerTetStep(Formulation form, int n, int* tetsOut, bool contact = false)
 {
     TetMesh mesh = TetMesh::box(n, n, n, [](const Vec3& x) { return x; });
     *tetsOut = mesh.nElements();
@@ -21,6 +22,7 @@ double nsPerTetStep(Formulation form, int n, int* tetsOut)
                         {form, 0.8, 0.0});
     solid.fix("xmin");
     solid.addFollowerPressure("xmax", [](double) { return 100.0; });
+    if (contact) solid.enableContact({true, true});
     const double dt = solid.stableTimeStep();
     for (int k = 0; k < 3; ++k) solid.step(dt);  // warm up
     const int steps = std::max(5, int(2e7 / *tetsOut));
@@ -35,13 +37,15 @@ double nsPerTetStep(Formulation form, int n, int* tetsOut)
 int main(int argc, char* argv[])
 {
     const double maxTets = argc > 1 ? std::atof(argv[1]) : 1.1e6;
-    std::printf("%10s %22s %14s %8s\n", "tets", "selective ns/tet/step", "FEM-T4 ns/tet", "ratio");
+    std::printf("%10s %22s %14s %8s %22s\n", "tets", "selective ns/tet/step", "FEM-T4 ns/tet",
+                "ratio", "selective+self contact");
     for (int n : {12, 26, 55}) {
         if (6.0 * n * n * n > maxTets) break;
         int tets = 0;
         const double sel = nsPerTetStep(Formulation::Selective, n, &tets);
         const double fem = nsPerTetStep(Formulation::FEM_T4, n, &tets);
-        std::printf("%10d %22.1f %14.1f %8.2f\n", tets, sel, fem, sel / fem);
+        const double con = nsPerTetStep(Formulation::Selective, n, &tets, true);
+        std::printf("%10d %22.1f %14.1f %8.2f %22.1f\n", tets, sel, fem, sel / fem, con);
     }
     std::printf("target: selective <= 200 ns per tet per sub-step on one core "
                 "(121k-tet leaflets in under 25 ms)\n");

@@ -123,6 +123,7 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double waveModulus,
     hMin_ = std::numeric_limits<double>::max();
     for (int e = 0; e < mesh.nElements(); ++e) hMin_ = std::min(hMin_, mesh.elementHeight(e));
     depth_ = options_.depthFraction * hMin_;
+    skin_ = depth_;
 
     area_.assign(nn, 0.0);
     std::vector<char> onBoundary(nn, 0);
@@ -147,6 +148,21 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double waveModulus,
         for (int v : mesh.elements()[e]) nodePart_[v] = mesh.elementPart()[e];
     }
     for (int f : mesh.boundaryFaces()) triPart_.push_back(mesh.elementPart()[mesh.faces()[f].owner]);
+
+    // boundary faces around each node, for the node normals
+    const auto& bf = mesh.boundaryFaces();
+    nodeFaceStart_.assign(nn + 1, 0);
+    for (int f : bf) {
+        for (int v : mesh.faces()[f].nodes) ++nodeFaceStart_[v + 1];
+    }
+    for (int v = 0; v < nn; ++v) nodeFaceStart_[v + 1] += nodeFaceStart_[v];
+    nodeFaces_.resize(nodeFaceStart_[nn]);
+    {
+        std::vector<int> fill(nodeFaceStart_.begin(), nodeFaceStart_.end() - 1);
+        for (int i = 0; i < static_cast<int>(bf.size()); ++i) {
+            for (int v : mesh.faces()[bf[i]].nodes) nodeFaces_[fill[v]++] = i;
+        }
+    }
 
     if (options_.selfContact) {
         neighbours_.assign(nn, {});
@@ -173,7 +189,85 @@ void PenaltyContact::addRigidSurface(RigidSurface surface)
             }
         }
     }
+    const int sId = static_cast<int>(rigid_.size());
+    for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) rigidTri_.push_back({sId, t});
     rigid_.push_back(std::move(surface));
+    built_ = false;
+}
+
+void PenaltyContact::triangle(const TetMesh& mesh, const std::vector<Vec3>& x, int id, Vec3& a,
+                              Vec3& b, Vec3& c) const
+{
+    if (id >= 0) {
+        const Tri& t = mesh.faces()[mesh.boundaryFaces()[id]].nodes;
+        a = x[t[0]], b = x[t[1]], c = x[t[2]];
+    } else {
+        const auto& r = rigidTri_[-1 - id];
+        const RigidSurface& s = rigid_[r[0]];
+        const Tri& t = s.triangles[r[1]];
+        a = s.points[t[0]], b = s.points[t[1]], c = s.points[t[2]];
+    }
+}
+
+void PenaltyContact::buildCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const
+{
+    ++builds_;
+    built_ = true;
+    const auto& bfaces = mesh.boundaryFaces();
+    const bool meshTris = options_.betweenParts || options_.selfContact;
+    std::vector<int> ids;
+    if (meshTris) {
+        for (int i = 0; i < static_cast<int>(bfaces.size()); ++i) ids.push_back(i);
+    }
+    for (int i = 0; i < static_cast<int>(rigidTri_.size()); ++i) ids.push_back(-1 - i);
+
+    const int ns = static_cast<int>(slaveNodes_.size());
+    candStart_.assign(ns + 1, 0);
+    cand_.clear();
+    xBuild_.resize(ns);
+    for (int s = 0; s < ns; ++s) xBuild_[s] = x[slaveNodes_[s]];
+    if (ids.empty()) return;
+
+    const double reach = depth_ + skin_;
+    double meanSize = 0;
+    for (int id : ids) {
+        Vec3 a, b, c;
+        triangle(mesh, x, id, a, b, c);
+        meanSize += ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
+    }
+    SpatialHash hash(std::max(meanSize / ids.size(), 2.0 * reach));
+    for (int id : ids) {
+        Vec3 a, b, c;
+        triangle(mesh, x, id, a, b, c);
+        const Vec3 pad = Vec3::Constant(reach);
+        hash.insert(id, a.cwiseMin(b).cwiseMin(c) - pad, a.cwiseMax(b).cwiseMax(c) + pad);
+    }
+    for (int s = 0; s < ns; ++s) {
+        const int p = slaveNodes_[s];
+        if (const std::vector<int>* cands = hash.query(x[p])) {
+            for (int id : *cands) {
+                if (id >= 0) {
+                    const Tri& t = mesh.faces()[bfaces[id]].nodes;
+                    if (t[0] == p || t[1] == p || t[2] == p) continue;
+                    const bool same = triPart_[id] == nodePart_[p];
+                    if (same && !options_.selfContact) continue;
+                    if (!same && !options_.betweenParts) continue;
+                    if (same) {
+                        const auto& nb = neighbours_[p];
+                        if (std::binary_search(nb.begin(), nb.end(), t[0]) ||
+                            std::binary_search(nb.begin(), nb.end(), t[1]) ||
+                            std::binary_search(nb.begin(), nb.end(), t[2]))
+                            continue;
+                    }
+                }
+                Vec3 a, b, c;
+                triangle(mesh, x, id, a, b, c);
+                Proximity r;
+                if (proximity(x[p], a, b, c, r) && r.distance <= reach) cand_.push_back(id);
+            }
+        }
+        candStart_[s + 1] = static_cast<int>(cand_.size());
+    }
 }
 
 double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& x,
@@ -181,69 +275,32 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
                                  std::vector<double>& pressure) const
 {
     pressure.assign(mesh_.nNodes(), 0.0);
-    const auto& bfaces = mesh_.boundaryFaces();
+    if (!(options_.betweenParts || options_.selfContact) && rigidTri_.empty()) return 0.0;
 
-    // Triangles: mesh boundary (ids >= 0) and rigid (ids < 0)
-    struct RigidRef {
-        int surface, tri;
-    };
-    std::vector<RigidRef> rigidRefs;
-    for (int s = 0; s < static_cast<int>(rigid_.size()); ++s) {
-        for (int t = 0; t < static_cast<int>(rigid_[s].triangles.size()); ++t) {
-            rigidRefs.push_back({s, t});
-        }
+    // Candidate lists: rebuilt once a boundary node has moved by more than
+    // skin/2 since the last build
+    bool rebuild = !built_;
+    const int ns = static_cast<int>(slaveNodes_.size());
+    const double limit2 = 0.25 * skin_ * skin_;
+    for (int s = 0; s < ns && !rebuild; ++s) {
+        rebuild = (x[slaveNodes_[s]] - xBuild_[s]).squaredNorm() > limit2;
     }
-    const bool meshTris = options_.betweenParts || options_.selfContact;
-    if (!meshTris && rigidRefs.empty()) return 0.0;
-
-    double meanSize = 0;
-    int count = 0;
-    auto triangle = [&](int id, Vec3& a, Vec3& b, Vec3& c) {
-        if (id >= 0) {
-            const Tri& t = mesh_.faces()[bfaces[id]].nodes;
-            a = x[t[0]], b = x[t[1]], c = x[t[2]];
-        } else {
-            const RigidRef& r = rigidRefs[-1 - id];
-            const RigidSurface& s = rigid_[r.surface];
-            const Tri& t = s.triangles[r.tri];
-            a = s.points[t[0]], b = s.points[t[1]], c = s.points[t[2]];
-        }
-    };
-    std::vector<int> ids;
-    if (meshTris) {
-        for (int i = 0; i < static_cast<int>(bfaces.size()); ++i) ids.push_back(i);
-    }
-    for (int i = 0; i < static_cast<int>(rigidRefs.size()); ++i) ids.push_back(-1 - i);
-    for (int id : ids) {
-        Vec3 a, b, c;
-        triangle(id, a, b, c);
-        meanSize += ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
-        ++count;
-    }
-    SpatialHash hash(std::max(meanSize / count, 2.0 * depth_));
-    for (int id : ids) {
-        Vec3 a, b, c;
-        triangle(id, a, b, c);
-        const Vec3 pad = Vec3::Constant(depth_);
-        hash.insert(id, a.cwiseMin(b).cwiseMin(c) - pad, a.cwiseMax(b).cwiseMax(c) + pad);
-    }
-
-    // Outward normals of the boundary nodes (area-weighted): a node only
-    // contacts triangles facing it, so that a node on an edge of another
-    // body's face (e.g. where two plates meet at a side) is not pushed
-    // sideways by that body's side faces
-    std::vector<Vec3> nodeNormal(mesh_.nNodes(), Vec3::Zero());
-    for (int f : bfaces) {
-        const Tri& t = mesh_.faces()[f].nodes;
-        const Vec3 nA = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
-        for (int v : t) nodeNormal[v] += nA;
-    }
-    for (int p : slaveNodes_) nodeNormal[p].normalize();
+    if (rebuild) buildCandidates(mesh_, x);
 
     pairs_.clear();
-    for (int p : slaveNodes_) {
-        const std::vector<int>* cands = hash.query(x[p]);
-        if (!cands) continue;
+    for (int s = 0; s < ns; ++s) {
+        if (candStart_[s] == candStart_[s + 1]) continue;
+        const int p = slaveNodes_[s];
+        // Outward normal of the node (area-weighted): a node only contacts
+        // triangles facing it, so that a node on an edge of another body's
+        // face (e.g. where two plates meet at a side) is not pushed sideways
+        // by that body's side faces
+        Vec3 nodeNormal = Vec3::Zero();
+        for (int i = nodeFaceStart_[p]; i < nodeFaceStart_[p + 1]; ++i) {
+            const Tri& t = mesh_.faces()[mesh_.boundaryFaces()[nodeFaces_[i]]].nodes;
+            nodeNormal += (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+        }
+        nodeNormal.normalize();
         // Closest facing triangle (distance to its closest point). The gap
         // is measured along its normal, and the force fades out linearly
         // with the lateral offset over the search depth: continuous where
@@ -253,26 +310,13 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
         // exactly above an edge or vertex (matching meshes) is held.
         Proximity bestP{depth_, 0, 0, Vec3::Zero(), {0, 0, 0}};
         int bestId = 0;
-        for (int id : *cands) {
-            if (id >= 0) {
-                const Tri& t = mesh_.faces()[bfaces[id]].nodes;
-                if (t[0] == p || t[1] == p || t[2] == p) continue;
-                const bool same = triPart_[id] == nodePart_[p];
-                if (same && !options_.selfContact) continue;
-                if (!same && !options_.betweenParts) continue;
-                if (same) {
-                    const auto& nb = neighbours_[p];
-                    if (std::binary_search(nb.begin(), nb.end(), t[0]) ||
-                        std::binary_search(nb.begin(), nb.end(), t[1]) ||
-                        std::binary_search(nb.begin(), nb.end(), t[2]))
-                        continue;
-                }
-            }
+        for (int i = candStart_[s]; i < candStart_[s + 1]; ++i) {
+            const int id = cand_[i];
             Vec3 a, b, c;
-            triangle(id, a, b, c);
+            triangle(mesh_, x, id, a, b, c);
             Proximity r;
             if (!proximity(x[p], a, b, c, r)) continue;
-            if (nodeNormal[p].dot(r.normal) > -options_.facingCosine) continue;
+            if (nodeNormal.dot(r.normal) > -options_.facingCosine) continue;
             if (r.distance < bestP.distance) {
                 bestP = r;
                 bestId = id;
@@ -291,7 +335,7 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
     auto nodesOf = [&](const Pair& c, int v[4], double b[4]) {
         v[0] = c.node, b[0] = 1;
         if (c.id < 0) return 1;
-        const Tri& t = mesh_.faces()[bfaces[c.id]].nodes;
+        const Tri& t = mesh_.faces()[mesh_.boundaryFaces()[c.id]].nodes;
         for (int i = 0; i < 3; ++i) v[i + 1] = t[i], b[i + 1] = c.w[i];
         return 4;
     };

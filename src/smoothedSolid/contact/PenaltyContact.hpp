@@ -2,7 +2,10 @@
 // contact force, no friction): node-to-surface between distinct parts, self
 // contact within a part, and against rigid triangulated surfaces supplied by
 // the caller. Candidate triangles come from a spatial hash of their bounding
-// boxes (never all pairs).
+// boxes (never all pairs), kept per node as a Verlet list: the list holds
+// the triangles within depth + skin of the node and is rebuilt only once a
+// boundary node has moved by more than skin/2 since the last build (so no
+// pair can come within the search depth unseen; skin = search depth).
 //
 // Each boundary node p is tested against the boundary triangles T of the
 // other parts (and of its own part, away from its own elements, with self
@@ -37,6 +40,7 @@
 
 #include "mesh/TetMesh.hpp"
 
+#include <array>
 #include <vector>
 
 namespace smoothedSolid {
@@ -77,6 +81,8 @@ public:
 
     double penaltyStiffness(int node) const { return k_[node]; }
     double depth() const { return depth_; }
+    // How often the candidate lists were built (the first build included)
+    long candidateBuilds() const { return builds_; }
 
 private:
     ContactOptions options_;
@@ -86,7 +92,9 @@ private:
     std::vector<int> triPart_;            // part of each boundary triangle
     std::vector<int> nodePart_;
     std::vector<std::vector<int>> neighbours_;  // nodes sharing an element
+    std::vector<int> nodeFaceStart_, nodeFaces_;  // boundary faces (CSR, into boundaryFaces())
     std::vector<RigidSurface> rigid_;
+    std::vector<std::array<int, 2>> rigidTri_;  // (surface, triangle) for id -1 - i
     double depth_ = 0, hMin_ = 0;
     double budget_ = 0;  // gamma omega_e^2
 
@@ -98,6 +106,16 @@ private:
     };
     mutable std::vector<Pair> pairs_;
     mutable std::vector<double> load_;
+
+    // Verlet candidate lists: per slave node (CSR over slaveNodes_)
+    void buildCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const;
+    void triangle(const TetMesh& mesh, const std::vector<Vec3>& x, int id, Vec3& a, Vec3& b,
+                  Vec3& c) const;
+    double skin_ = 0;
+    mutable bool built_ = false;
+    mutable long builds_ = 0;
+    mutable std::vector<int> candStart_, cand_;
+    mutable std::vector<Vec3> xBuild_;  // slave node positions at the last build
 };
 
 }  // namespace smoothedSolid
