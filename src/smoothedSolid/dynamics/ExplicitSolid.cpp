@@ -54,6 +54,20 @@ ExplicitSolid::ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> mater
     }
     Fe_.resize(ne);
     Pbar_.resize(ne);
+    Pf_.resize(mesh_.faces().size());
+    Pn_.resize(mesh_.nNodes());
+    {
+        // local index (0..3) of each node in each element around it
+        const auto& start = mesh_.nodeElementStart();
+        const auto& elems = mesh_.nodeElements();
+        nodeLocal_.resize(elems.size());
+        for (int k = 0; k < mesh_.nNodes(); ++k) {
+            for (int i = start[k]; i < start[k + 1]; ++i) {
+                const Tet& t = mesh_.elements()[elems[i]];
+                nodeLocal_[i] = static_cast<std::uint8_t>(std::find(t.begin(), t.end(), k) - t.begin());
+            }
+        }
+    }
 
     const int n = mesh_.nNodes();
     mass_.assign(n, 0.0);
@@ -120,13 +134,22 @@ void ExplicitSolid::addRigidSurface(RigidSurface surface)
     contact_->addRigidSurface(std::move(surface));
 }
 
+// The internal force in gather form, so that every loop writes only its own
+// entries and runs in parallel with OpenMP (when built with it):
+//   F_e            per element
+//   P_d = P(F_d)   per smoothing domain, F_d the weighted mean of its F_e
+//   Pbar_e = (V_e/4) sum of the P_d of the domains e takes part in
+//   f_I = sum_{e around I} Pbar_e g_eI
 std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
 {
     const Material& m = *material_;
     const auto& tets = mesh_.elements();
     const int ne = mesh_.nElements();
+    const int nn = mesh_.nNodes();
+    const int nf = static_cast<int>(mesh_.faces().size());
 
     // Element deformation gradients F_e = I + sum_a u_a (x) g_ea
+#pragma omp parallel for schedule(static)
     for (int e = 0; e < ne; ++e) {
         const Tet& t = tets[e];
         const auto& g = elemGrad_[e];
@@ -134,67 +157,100 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
         for (int a = 0; a < 4; ++a) F.noalias() += u[t[a]] * g.row(a);
         Fe_[e] = F;
     }
-    for (Mat3& P : Pbar_) P.setZero();
 
-    auto checked = [&](const Mat3& F, int d, const char* kind) -> const Mat3& {
-        if (!(F.determinant() > 0)) {
-            throw Error("inverted material in " + std::string(kind) + " smoothing domain " +
-                        std::to_string(d) + " at t = " + std::to_string(t_) +
-                        " (det F = " + std::to_string(F.determinant()) +
-                        "): the time step or the load is too large");
+    // An inverted domain is recorded (lowest index) inside the parallel
+    // loops and reported after them: exceptions cannot leave an OpenMP loop
+    int badDomain = std::numeric_limits<int>::max();
+    double badDet = 0;
+    const char* badKind = "";
+    auto check = [&](const Mat3& F, int d, const char* kind) {
+        const double J = F.determinant();
+        if (!(J > 0)) {
+#pragma omp critical(smoothedSolidInverted)
+            if (d < badDomain) badDomain = d, badDet = J, badKind = kind;
+            return false;
         }
-        return F;
+        return true;
+    };
+    auto report = [&] {
+        if (badDomain == std::numeric_limits<int>::max()) return;
+        throw Error("inverted material in " + std::string(badKind) + " smoothing domain " +
+                    std::to_string(badDomain) + " at t = " + std::to_string(t_) +
+                    " (det F = " + std::to_string(badDet) +
+                    "): the time step or the load is too large");
     };
     // Face domains (Eq. 22 on the face-based domains): F_f from the one or
-    // two elements sharing f; P_f goes back to them with weight V_e/4
+    // two elements sharing f
     auto faces = [&](auto stress) {
         const auto& fs = mesh_.faces();
-        for (std::size_t f = 0; f < fs.size(); ++f) {
+#pragma omp parallel for schedule(static)
+        for (int f = 0; f < nf; ++f) {
             const Face& fc = fs[f];
             const auto& w = faceWeight_[f];
             Mat3 F = w[0] * Fe_[fc.owner];
             if (fc.neighbour >= 0) F.noalias() += w[1] * Fe_[fc.neighbour];
-            const Mat3 P = stress(checked(F, int(f), "face"));
-            Pbar_[fc.owner].noalias() += quarterVolume_[fc.owner] * P;
-            if (fc.neighbour >= 0) Pbar_[fc.neighbour].noalias() += quarterVolume_[fc.neighbour] * P;
+            Pf_[f] = check(F, f, "face") ? stress(F) : Mat3::Zero();
+        }
+        report();
+        const auto& elemFaces = mesh_.elementFaces();
+#pragma omp parallel for schedule(static)
+        for (int e = 0; e < ne; ++e) {
+            const auto& ef = elemFaces[e];
+            Pbar_[e] = quarterVolume_[e] * (Pf_[ef[0]] + Pf_[ef[1]] + Pf_[ef[2]] + Pf_[ef[3]]);
         }
     };
-    // Node domains: F_k from the elements around k, P_k back to them
-    auto nodes = [&](auto stress) {
+    // Node domains: F_k from the elements around k
+    auto nodes = [&](auto stress, bool add) {
         const auto& start = mesh_.nodeElementStart();
         const auto& elems = mesh_.nodeElements();
-        for (int k = 0; k < mesh_.nNodes(); ++k) {
+#pragma omp parallel for schedule(static)
+        for (int k = 0; k < nn; ++k) {
             Mat3 F = Mat3::Zero();
             for (int i = start[k]; i < start[k + 1]; ++i) F.noalias() += nodeWeight_[i] * Fe_[elems[i]];
-            const Mat3 P = stress(checked(F, k, "node"));
-            for (int i = start[k]; i < start[k + 1]; ++i) {
-                Pbar_[elems[i]].noalias() += quarterVolume_[elems[i]] * P;
-            }
+            Pn_[k] = check(F, k, "node") ? stress(F) : Mat3::Zero();
+        }
+        report();
+#pragma omp parallel for schedule(static)
+        for (int e = 0; e < ne; ++e) {
+            const Tet& t = tets[e];
+            const Mat3 P = quarterVolume_[e] * (Pn_[t[0]] + Pn_[t[1]] + Pn_[t[2]] + Pn_[t[3]]);
+            if (add) Pbar_[e] += P;
+            else Pbar_[e] = P;
         }
     };
     auto full = [&](const Mat3& F) { return m.firstPK(F); };
 
     switch (options_.formulation) {
         case Formulation::FEM_T4:
-            for (int e = 0; e < ne; ++e) Pbar_[e] = 4.0 * quarterVolume_[e] * full(checked(Fe_[e], e, "element"));
+#pragma omp parallel for schedule(static)
+            for (int e = 0; e < ne; ++e) {
+                Pbar_[e] = check(Fe_[e], e, "element") ? Mat3(4.0 * quarterVolume_[e] * full(Fe_[e]))
+                                                       : Mat3::Zero();
+            }
+            report();
             break;
         case Formulation::FS_FEM: faces(full); break;
-        case Formulation::NS_FEM: nodes(full); break;
+        case Formulation::NS_FEM: nodes(full, false); break;
         case Formulation::Selective:
             // Sect. 3.2: deviatoric stress on face-based domains, volumetric
             // stress on node-based domains
             faces([&](const Mat3& F) { return m.stressDeviatoric(F); });
-            nodes([&](const Mat3& F) { return m.stressVolumetric(F); });
+            nodes([&](const Mat3& F) { return m.stressVolumetric(F); }, true);
             break;
     }
 
     // f_I = sum_e Pbar_e g_eI (Eq. 31 with the first Piola-Kirchhoff stress)
-    std::vector<Vec3> f(mesh_.nNodes(), Vec3::Zero());
-    for (int e = 0; e < ne; ++e) {
-        const Tet& t = tets[e];
-        const auto& g = elemGrad_[e];
-        const Mat3& P = Pbar_[e];
-        for (int a = 0; a < 4; ++a) f[t[a]].noalias() += P * g.row(a).transpose();
+    std::vector<Vec3> f(nn);
+    const auto& start = mesh_.nodeElementStart();
+    const auto& elems = mesh_.nodeElements();
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < nn; ++k) {
+        Vec3 fk = Vec3::Zero();
+        for (int i = start[k]; i < start[k + 1]; ++i) {
+            const int e = elems[i];
+            fk.noalias() += Pbar_[e] * elemGrad_[e].row(nodeLocal_[i]).transpose();
+        }
+        f[k] = fk;
     }
     return f;
 }
@@ -243,7 +299,9 @@ std::vector<Vec3> ExplicitSolid::currentCoordinates() const
 void ExplicitSolid::accelerationForces(std::vector<Vec3>& f)
 {
     f = internalForce(u_);
-    for (int i = 0; i < mesh_.nNodes(); ++i) f[i] = fext_[i] + mass_[i] * bodyForce_ - f[i];
+    const int nn = mesh_.nNodes();
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nn; ++i) f[i] = fext_[i] + mass_[i] * bodyForce_ - f[i];
 
     if (!pressures_.empty()) {
         const auto& X = mesh_.coordinates();
@@ -302,11 +360,12 @@ void ExplicitSolid::step(double dt)
     const double c = 0.5 * options_.damping * dtAvg;
     const double a = (1.0 - c) / (1.0 + c);
     const double b = dtAvg / (1.0 + c);
-    for (int i = 0; i < mesh_.nNodes(); ++i) {
-        vHalf_[i] = a * vHalf_[i] + (b / mass_[i]) * work_[i];
-    }
+    const int nn = mesh_.nNodes();
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nn; ++i) vHalf_[i] = a * vHalf_[i] + (b / mass_[i]) * work_[i];
     applyConstraints(dt);
-    for (int i = 0; i < mesh_.nNodes(); ++i) u_[i] += dt * vHalf_[i];
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nn; ++i) u_[i] += dt * vHalf_[i];
 
     t_ += dt;
     dtLast_ = dt;

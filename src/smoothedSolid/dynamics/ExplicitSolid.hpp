@@ -12,6 +12,7 @@
 #include "smoothing/SmoothingDomains.hpp"
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -132,7 +133,8 @@ private:
     std::vector<double> quarterVolume_;              // V_e/4
     std::vector<std::array<double, 2>> faceWeight_;  // owner, neighbour
     std::vector<double> nodeWeight_;                 // per mesh.nodeElements() entry
-    mutable std::vector<Mat3> Fe_, Pbar_;
+    std::vector<std::uint8_t> nodeLocal_;            // per mesh.nodeElements() entry
+    mutable std::vector<Mat3> Fe_, Pbar_, Pf_, Pn_;  // element F; stresses per element, face, node
 
     std::vector<double> mass_;
     std::vector<Vec3> u_, vHalf_, fext_;

@@ -1,5 +1,7 @@
 // Explicit dynamics: energy conservation, stable time step, sub-cycling
+#include "Parallel.hpp"
 #include "dynamics/ExplicitSolid.hpp"
+#include "testMeshes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -124,4 +126,34 @@ TEST(Dynamics, StableTimeStepEstimateIsStable)
             EXPECT_TRUE(failed || !std::isfinite(maxU) || maxU > 1.0);
         }
     }
+}
+
+// The threaded internal force is in gather form (each entry summed by one
+// thread in a fixed order): the result must not depend on the thread count
+TEST(Dynamics, InternalForceIndependentOfThreadCount)
+{
+    const int threads = numThreads();
+    const TetMesh mesh = TetMesh::fromGmsh(test::boxMsh("threads", 1.0, 0.5, 0.4, 0.12));
+    std::vector<Vec3> u(mesh.nNodes());
+    for (int i = 0; i < mesh.nNodes(); ++i) {
+        const Vec3& X = mesh.coordinates()[i];
+        u[i] = 0.05 * Vec3(std::sin(3 * X.y()), X.x() * X.z(), std::cos(2 * X.x()) - 1);
+    }
+    double worst = 0;
+    for (Formulation form : {Formulation::FEM_T4, Formulation::NS_FEM, Formulation::FS_FEM,
+                             Formulation::Selective}) {
+        ExplicitSolid solid(mesh, std::make_shared<MooneyRivlin>(1000.0, 200.0, 5e4, 1000.0),
+                            {form, 0.8, 0.0});
+        setNumThreads(1);
+        const std::vector<Vec3> f1 = solid.internalForce(u);
+        setNumThreads(2);
+        const std::vector<Vec3> f2 = solid.internalForce(u);
+        for (int i = 0; i < mesh.nNodes(); ++i) worst = std::max(worst, (f1[i] - f2[i]).norm());
+    }
+    setNumThreads(threads);
+    std::printf("internal force on 1 and 2 threads, %d nodes, 4 formulations: largest "
+                "difference %.3e (must be 0)\n",
+                mesh.nNodes(), worst);
+    EXPECT_EQ(worst, 0.0);
+    EXPECT_THROW(setNumThreads(0), Error);
 }
