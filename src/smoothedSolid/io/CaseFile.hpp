@@ -17,7 +17,10 @@
 //   traction      <faceSet> tx ty tz [ramp T] dead load per reference area
 //   damping       c                           mass-proportional [1/s]
 //   safety        0.8                         fraction of the stable step
-//   contact       [self]                      penalty contact between parts
+//   contact       [self] [dampingRatio 0.1] [stepFraction 0.5] [penaltyScale 2]
+//                                             penalty contact between parts
+//                                             (and within them); see
+//                                             contact/PenaltyContact.hpp
 //   endTime       T
 //   writeInterval dt                          VTU output interval
 //   output        results                     output directory

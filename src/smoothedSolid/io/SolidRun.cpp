@@ -169,8 +169,21 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
     }
     if (const auto* e = case_.find("contact", true)) {
         ContactOptions co;
-        co.selfContact = !e->args.empty() && e->args[0] == "self";
-        s.enableContact(co);
+        std::size_t i = 0;
+        if (!e->args.empty() && e->args[0] == "self") co.selfContact = true, i = 1;
+        for (; i < e->args.size(); i += 2) {
+            const std::string& name = e->args[i];
+            double* target = name == "dampingRatio"   ? &co.dampingRatio
+                             : name == "stepFraction" ? &co.stepFraction
+                             : name == "penaltyScale" ? &co.penaltyScale
+                                                      : nullptr;
+            if (!target || i + 1 >= e->args.size()) {
+                case_.fail(*e, "expected [self] then 'dampingRatio z', 'stepFraction f' or "
+                               "'penaltyScale b' pairs, got '" + name + "'");
+            }
+            *target = case_.number(*e, i + 1);
+        }
+        guarded(*e, [&] { s.enableContact(co); });
     }
 
     endTime_ = case_.number(*case_.find("endTime"), 0);

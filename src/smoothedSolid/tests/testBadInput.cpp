@@ -1,5 +1,6 @@
 // Bad input: each a clear exception naming the problem
 #include "dynamics/ExplicitSolid.hpp"
+#include "io/SolidRun.hpp"
 #include "testMeshes.hpp"
 
 #include <gtest/gtest.h>
@@ -76,4 +77,26 @@ TEST(BadInput, InvertedInitialElement)
     expectError([&] { TetMesh(X, tets); }, {"element 1", "inverted"});
     std::vector<Tet> flat = {{0, 1, 2, 3}, {0, 1, 2, 2}};
     expectError([&] { TetMesh(X, flat); }, {"element 1", "zero volume"});
+}
+
+TEST(BadInput, CaseFileContactOptions)
+{
+    auto write = [](const std::string& name, const std::string& contact) {
+        const std::string file = test::tempDir() + "/" + name + ".solid";
+        std::ofstream os(file);
+        os << "box 2 2 2 0 0 0 1 1 1\n"
+              "material neoHookean mu 80 K 4e5 rho 1\n"
+              "fix xmin\n"
+           << contact
+           << "\nendTime 1\nwriteInterval 0.5\n";
+        return file;
+    };
+    expectError([&] { SolidRun run(write("contactWord", "contact self dampingRate 0.1")); },
+                {"contactWord.solid:4", "contact", "dampingRate"});
+    expectError([&] { SolidRun run(write("contactFraction", "contact stepFraction 1.5")); },
+                {"contactFraction.solid", "contact", "step fraction"});
+    // the options are taken: the stable step is the contact-free one times 0.3
+    SolidRun ok(write("contactGood", "contact self dampingRatio 0 stepFraction 0.3"));
+    SolidRun none(write("contactNone", ""));
+    EXPECT_NEAR(ok.solid().stableTimeStep() / none.solid().stableTimeStep(), 0.3, 1e-12);
 }
