@@ -116,8 +116,7 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double waveModulus,
                     std::to_string(options_.stepFraction));
     }
     if (!(options_.penaltyScale > 0)) throw Error("contact: the penalty scale must be positive");
-    const double gamma = 1.0 / (options_.stepFraction * options_.stepFraction) - 1.0;
-    budget_ = gamma * 4.0 / (dtElement * dtElement);
+    omegaE2_ = 4.0 / (dtElement * dtElement);
     const int nn = mesh.nNodes();
     const auto& X = mesh.coordinates();
     hMin_ = std::numeric_limits<double>::max();
@@ -209,6 +208,25 @@ void PenaltyContact::triangle(const TetMesh& mesh, const std::vector<Vec3>& x, i
     }
 }
 
+// Candidate lists: rebuilt once a boundary node has moved by more than
+// skin/2 since the last build
+void PenaltyContact::updateCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const
+{
+    bool rebuild = !built_;
+    const int ns = static_cast<int>(slaveNodes_.size());
+    const double limit2 = 0.25 * skin_ * skin_;
+    for (int s = 0; s < ns && !rebuild; ++s) {
+        rebuild = (x[slaveNodes_[s]] - xBuild_[s]).squaredNorm() > limit2;
+    }
+    if (rebuild) buildCandidates(mesh, x);
+}
+
+double PenaltyContact::stableTimeStepFactor(const TetMesh& mesh, const std::vector<Vec3>& x) const
+{
+    updateCandidates(mesh, x);
+    return cand_.empty() ? 1.0 : options_.stepFraction;
+}
+
 void PenaltyContact::buildCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const
 {
     ++builds_;
@@ -271,21 +289,14 @@ void PenaltyContact::buildCandidates(const TetMesh& mesh, const std::vector<Vec3
 }
 
 double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& x,
-                                 const std::vector<Vec3>& velocity, std::vector<Vec3>& f,
-                                 std::vector<double>& pressure) const
+                                 const std::vector<Vec3>& velocity, double dt,
+                                 std::vector<Vec3>& f, std::vector<double>& pressure) const
 {
     pressure.assign(mesh_.nNodes(), 0.0);
     if (!(options_.betweenParts || options_.selfContact) && rigidTri_.empty()) return 0.0;
 
-    // Candidate lists: rebuilt once a boundary node has moved by more than
-    // skin/2 since the last build
-    bool rebuild = !built_;
+    updateCandidates(mesh_, x);
     const int ns = static_cast<int>(slaveNodes_.size());
-    const double limit2 = 0.25 * skin_ * skin_;
-    for (int s = 0; s < ns && !rebuild; ++s) {
-        rebuild = (x[slaveNodes_[s]] - xBuild_[s]).squaredNorm() > limit2;
-    }
-    if (rebuild) buildCandidates(mesh_, x);
 
     pairs_.clear();
     for (int s = 0; s < ns; ++s) {
@@ -330,7 +341,9 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
     }
 
     // Limit the stiffness where a node's Gershgorin bound would exceed the
-    // budget (see the header): load_i = (1/m_i) sum_pairs k |b_i| sum_j |b_j|
+    // budget the step leaves (see the header):
+    // load_i = (1/m_i) sum_pairs k |b_i| sum_j |b_j|
+    const double budget = std::max(0.0, std::pow(2.0 * safety_ / dt, 2) - omegaE2_);
     load_.assign(mesh_.nNodes(), 0.0);
     auto nodesOf = [&](const Pair& c, int v[4], double b[4]) {
         v[0] = c.node, b[0] = 1;
@@ -353,7 +366,7 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
         const int n = nodesOf(c, v, b);
         double scale = 1.0;
         for (int i = 0; i < n; ++i) {
-            if (b[i] > 0 && load_[v[i]] > budget_) scale = std::min(scale, budget_ / load_[v[i]]);
+            if (b[i] > 0 && load_[v[i]] > budget) scale = std::min(scale, budget / load_[v[i]]);
         }
         // Spring and normal dashpot on the relative normal velocity
         // (critical damping ratio zeta of the pair's spring with the

@@ -114,7 +114,7 @@ double ExplicitSolid::stableTimeStep() const
 {
     const double c = std::sqrt(material_->waveModulus() / material_->density());
     const double dt = options_.safety * hMin_ / c;
-    return contact_ ? dt * contact_->stableTimeStepFactor() : dt;
+    return contact_ ? dt * contact_->stableTimeStepFactor(mesh_, currentCoordinates()) : dt;
 }
 
 void ExplicitSolid::enableContact(ContactOptions options)
@@ -296,7 +296,7 @@ std::vector<Vec3> ExplicitSolid::currentCoordinates() const
 }
 
 // f = f_ext - f_int at the current state (Eq. 42)
-void ExplicitSolid::accelerationForces(std::vector<Vec3>& f)
+void ExplicitSolid::accelerationForces(std::vector<Vec3>& f, double dt)
 {
     f = internalForce(u_);
     const int nn = mesh_.nNodes();
@@ -321,7 +321,7 @@ void ExplicitSolid::accelerationForces(std::vector<Vec3>& f)
     }
 
     if (contact_) {
-        maxPenetration_ = contact_->addForces(mesh_, currentCoordinates(), vHalf_, f,
+        maxPenetration_ = contact_->addForces(mesh_, currentCoordinates(), vHalf_, dt, f,
                                               contactPressure_);
     }
 }
@@ -354,9 +354,9 @@ void ExplicitSolid::step(double dt)
     if (!(dt > 0) || !std::isfinite(dt)) {
         throw Error("ExplicitSolid::step: time step must be positive");
     }
-    accelerationForces(work_);
-
     const double dtAvg = 0.5 * (dtLast_ + dt);
+    accelerationForces(work_, std::max(dt, dtAvg));
+
     const double c = 0.5 * options_.damping * dtAvg;
     const double a = (1.0 - c) / (1.0 + c);
     const double b = dtAvg / (1.0 + c);
@@ -372,13 +372,24 @@ void ExplicitSolid::step(double dt)
     ++nSteps_;
 }
 
+// Sub-steps of equal size within what is left of dt, re-chosen after each
+// one: the stable step shrinks when contact comes near
 int ExplicitSolid::advance(double dt)
 {
     if (dt <= 0) return 0;
-    const int n = static_cast<int>(std::ceil(dt / stableTimeStep() - 1e-12));
-    const double sub = dt / n;
-    for (int k = 0; k < n; ++k) step(sub);
-    return n;
+    double left = dt;
+    int n = 0;
+    for (;;) {
+        const int k = static_cast<int>(std::ceil(left / stableTimeStep() - 1e-12));
+        ++n;
+        if (k <= 1) {
+            step(left);
+            return n;
+        }
+        const double h = left / k;
+        step(h);
+        left -= h;
+    }
 }
 
 }  // namespace smoothedSolid

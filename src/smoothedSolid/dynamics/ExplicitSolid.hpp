@@ -62,17 +62,21 @@ public:
     void addRigidSurface(RigidSurface surface);
     // Contact pressure per node and the largest penetration of the last step
     const std::vector<double>& contactPressure() const { return contactPressure_; }
+    // The contact, if enabled (else null)
+    const PenaltyContact* contact() const { return contact_.get(); }
     double maxPenetration() const { return maxPenetration_; }
 
     // Initial velocity field v0(X); only before the first step
     void setInitialVelocity(const VectorFunction& v0);
 
     // --- time stepping ----------------------------------------------------
-    // Stable time step: safety * min element height / dilatational wave speed
+    // Stable time step: safety * min element height / dilatational wave
+    // speed, times the contact step fraction while contact is near
     double stableTimeStep() const;
     // One central-difference step of size dt
     void step(double dt);
-    // Advance by dt with as many stable sub-steps as needed
+    // Advance by dt with as many stable sub-steps as needed (re-chosen after
+    // each sub-step)
     int advance(double dt);
 
     // --- state -------------------------------------------------------------
@@ -113,7 +117,7 @@ private:
         ScalarFunction p;
     };
 
-    void accelerationForces(std::vector<Vec3>& f);  // f_ext - f_int (+ contact) at t_
+    void accelerationForces(std::vector<Vec3>& f, double dt);  // f_ext - f_int (+ contact) at t_
     void applyConstraints(double dt);
 
     TetMesh mesh_;
