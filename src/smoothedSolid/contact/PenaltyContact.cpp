@@ -106,8 +106,8 @@ bool proximity(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Proxi
 
 }  // namespace
 
-PenaltyContact::PenaltyContact(const TetMesh& mesh, double waveModulus,
-                               const std::vector<double>& mass, double dtElement,
+PenaltyContact::PenaltyContact(const TetMesh& mesh, double hMin, double waveModulus,
+                               double density, const std::vector<double>& mass,
                                ContactOptions options)
     : options_(options), mass_(mass)
 {
@@ -116,12 +116,10 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double waveModulus,
                     std::to_string(options_.stepFraction));
     }
     if (!(options_.penaltyScale > 0)) throw Error("contact: the penalty scale must be positive");
-    omegaE2_ = 4.0 / (dtElement * dtElement);
+    omegaE2_ = 4.0 * waveModulus / (density * hMin * hMin);
     const int nn = mesh.nNodes();
     const auto& X = mesh.coordinates();
-    hMin_ = std::numeric_limits<double>::max();
-    for (int e = 0; e < mesh.nElements(); ++e) hMin_ = std::min(hMin_, mesh.elementHeight(e));
-    depth_ = options_.depthFraction * hMin_;
+    depth_ = options_.depthFraction * hMin;
     skin_ = depth_;
 
     area_.assign(nn, 0.0);
@@ -135,10 +133,11 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double waveModulus,
         }
     }
     k_.assign(nn, 0.0);
+    load_.assign(nn, 0.0);
     for (int v = 0; v < nn; ++v) {
         if (onBoundary[v]) {
             slaveNodes_.push_back(v);
-            k_[v] = options_.penaltyScale * waveModulus * area_[v] / hMin_;
+            k_[v] = options_.penaltyScale * waveModulus * area_[v] / hMin;
         }
     }
 
@@ -210,7 +209,7 @@ void PenaltyContact::triangle(const TetMesh& mesh, const std::vector<Vec3>& x, i
 
 // Candidate lists: rebuilt once a boundary node has moved by more than
 // skin/2 since the last build
-void PenaltyContact::updateCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const
+void PenaltyContact::search(const TetMesh& mesh, const std::vector<Vec3>& x) const
 {
     bool rebuild = !built_;
     const int ns = static_cast<int>(slaveNodes_.size());
@@ -219,12 +218,6 @@ void PenaltyContact::updateCandidates(const TetMesh& mesh, const std::vector<Vec
         rebuild = (x[slaveNodes_[s]] - xBuild_[s]).squaredNorm() > limit2;
     }
     if (rebuild) buildCandidates(mesh, x);
-}
-
-double PenaltyContact::stableTimeStepFactor(const TetMesh& mesh, const std::vector<Vec3>& x) const
-{
-    updateCandidates(mesh, x);
-    return cand_.empty() ? 1.0 : options_.stepFraction;
 }
 
 void PenaltyContact::buildCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const
@@ -295,7 +288,7 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
     pressure.assign(mesh_.nNodes(), 0.0);
     if (!(options_.betweenParts || options_.selfContact) && rigidTri_.empty()) return 0.0;
 
-    updateCandidates(mesh_, x);
+    search(mesh_, x);
     const int ns = static_cast<int>(slaveNodes_.size());
 
     pairs_.clear();
@@ -344,7 +337,6 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
     // budget the step leaves (see the header):
     // load_i = (1/m_i) sum_pairs k |b_i| sum_j |b_j|
     const double budget = std::max(0.0, std::pow(2.0 * safety_ / dt, 2) - omegaE2_);
-    load_.assign(mesh_.nNodes(), 0.0);
     auto nodesOf = [&](const Pair& c, int v[4], double b[4]) {
         v[0] = c.node, b[0] = 1;
         if (c.id < 0) return 1;
@@ -382,6 +374,12 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
         for (int i = 0; i < n; ++i) f[v[i]] += (i == 0 ? 1.0 : -b[i]) * fc;
         pressure[c.node] += fc.norm() / area_[c.node];
         maxPenetration = std::max(maxPenetration, -c.gap);
+    }
+    for (const Pair& c : pairs_) {
+        load_[c.node] = 0;
+        if (c.id >= 0) {
+            for (int v : mesh_.faces()[mesh_.boundaryFaces()[c.id]].nodes) load_[v] = 0;
+        }
     }
     return maxPenetration;
 }

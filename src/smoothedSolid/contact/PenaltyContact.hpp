@@ -70,9 +70,10 @@ struct ContactOptions {
 
 class PenaltyContact {
 public:
-    // dtElement: h_min / c, the contact-free critical step without safety
-    PenaltyContact(const TetMesh& mesh, double waveModulus, const std::vector<double>& mass,
-                   double dtElement, ContactOptions options);
+    // hMin: smallest element height; waveModulus, density: M = K + 4 mu/3
+    // and rho of the material; mass: lumped nodal masses
+    PenaltyContact(const TetMesh& mesh, double hMin, double waveModulus, double density,
+                   const std::vector<double>& mass, ContactOptions options);
 
     const ContactOptions& options() const { return options_; }
 
@@ -86,12 +87,14 @@ public:
                      const std::vector<Vec3>& velocity, double dt, std::vector<Vec3>& f,
                      std::vector<double>& pressure) const;
 
-    // Ratio of the stable step to the contact-free one at coordinates x:
-    // stepFraction when anything is near contact, else 1
-    double stableTimeStepFactor(const TetMesh& mesh, const std::vector<Vec3>& x) const;
+    // The candidate search for coordinates x (addForces makes it too): the
+    // lists are rebuilt only once a boundary node has moved by skin/2
+    void search(const TetMesh& mesh, const std::vector<Vec3>& x) const;
+    bool searched() const { return built_; }
+    // Anything near contact (a candidate within the search reach) at the
+    // last search: then the stable step is stepFraction of the contact-free one
+    bool nearContact() const { return !cand_.empty(); }
 
-    double penaltyStiffness(int node) const { return k_[node]; }
-    double depth() const { return depth_; }
     // How often the candidate lists were built (the first build included)
     long candidateBuilds() const { return builds_; }
 
@@ -106,7 +109,7 @@ private:
     std::vector<int> nodeFaceStart_, nodeFaces_;  // boundary faces (CSR, into boundaryFaces())
     std::vector<RigidSurface> rigid_;
     std::vector<std::array<int, 2>> rigidTri_;  // (surface, triangle) for id -1 - i
-    double depth_ = 0, hMin_ = 0;
+    double depth_ = 0;
     double omegaE2_ = 0;  // (2 c / h_min)^2
     static constexpr double safety_ = 0.9;
 
@@ -117,11 +120,10 @@ private:
         double w[3];
     };
     mutable std::vector<Pair> pairs_;
-    mutable std::vector<double> load_;
+    mutable std::vector<double> load_;  // zero between calls
 
     // Verlet candidate lists: per slave node (CSR over slaveNodes_)
     void buildCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const;
-    void updateCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const;
     void triangle(const TetMesh& mesh, const std::vector<Vec3>& x, int id, Vec3& a, Vec3& b,
                   Vec3& c) const;
     double skin_ = 0;

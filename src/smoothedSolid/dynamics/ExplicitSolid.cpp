@@ -81,6 +81,7 @@ ExplicitSolid::ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> mater
     vHalf_.assign(n, Vec3::Zero());
     fext_.assign(n, Vec3::Zero());
     work_.assign(n, Vec3::Zero());
+    x_.assign(n, Vec3::Zero());
 }
 
 // ---------------------------------------------------------------------------
@@ -114,16 +115,18 @@ double ExplicitSolid::stableTimeStep() const
 {
     const double c = std::sqrt(material_->waveModulus() / material_->density());
     const double dt = options_.safety * hMin_ / c;
-    return contact_ ? dt * contact_->stableTimeStepFactor(mesh_, currentCoordinates()) : dt;
+    if (!contact_) return dt;
+    // near contact as of the last search (each force evaluation makes one)
+    if (!contact_->searched()) contact_->search(mesh_, currentCoordinates());
+    return contact_->nearContact() ? dt * contact_->options().stepFraction : dt;
 }
 
 void ExplicitSolid::enableContact(ContactOptions options)
 {
     std::vector<RigidSurface> keep;
     if (contact_) keep = contact_->rigidSurfaces();
-    const double c = std::sqrt(material_->waveModulus() / material_->density());
-    contact_ = std::make_unique<PenaltyContact>(mesh_, material_->waveModulus(), mass_, hMin_ / c,
-                                                options);
+    contact_ = std::make_unique<PenaltyContact>(mesh_, hMin_, material_->waveModulus(),
+                                                material_->density(), mass_, options);
     for (auto& s : keep) contact_->addRigidSurface(std::move(s));
     contactPressure_.assign(mesh_.nNodes(), 0.0);
 }
@@ -321,7 +324,10 @@ void ExplicitSolid::accelerationForces(std::vector<Vec3>& f, double dt)
     }
 
     if (contact_) {
-        maxPenetration_ = contact_->addForces(mesh_, currentCoordinates(), vHalf_, dt, f,
+        const auto& X = mesh_.coordinates();
+#pragma omp parallel for schedule(static)
+        for (int i = 0; i < nn; ++i) x_[i] = X[i] + u_[i];
+        maxPenetration_ = contact_->addForces(mesh_, x_, vHalf_, dt, f,
                                               contactPressure_);
     }
 }

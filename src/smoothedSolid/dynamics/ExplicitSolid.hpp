@@ -143,6 +143,7 @@ private:
     std::vector<double> mass_;
     std::vector<Vec3> u_, vHalf_, fext_;
     mutable std::vector<Vec3> work_;
+    std::vector<Vec3> x_;  // current coordinates, for the contact search
     std::vector<Constraint> constraints_;
     std::vector<Pressure> pressures_;
     std::unique_ptr<PenaltyContact> contact_;

@@ -356,9 +356,9 @@ TEST(Contact, CandidateListsMatchFreshSearch)
 {
     const TetMesh mesh = twoPlates(false, 2e-3);
     std::vector<double> mass(mesh.nNodes(), 1e-3);
-    const double M = kBulk + 4.0 * kMu / 3.0, dtE = 1e-5;
-    const double dt = 0.5 * 0.8 * dtE;
-    PenaltyContact kept(mesh, M, mass, dtE, {});
+    const double M = kBulk + 4.0 * kMu / 3.0, h = minHeight(mesh);
+    const double dt = 0.5 * 0.8 * h / std::sqrt(M / kRho);
+    PenaltyContact kept(mesh, h, M, kRho, mass, {});
     const std::vector<Vec3> v(mesh.nNodes(), Vec3::Zero());
     std::vector<Vec3> x(mesh.coordinates());
     double worst = 0;
@@ -373,7 +373,7 @@ TEST(Contact, CandidateListsMatchFreshSearch)
         std::vector<double> p;
         const double penKept = kept.addForces(mesh, x, v, dt, fKept, p);
         const double penFresh =
-            PenaltyContact(mesh, M, mass, dtE, {}).addForces(mesh, x, v, dt, fFresh, p);
+            PenaltyContact(mesh, h, M, kRho, mass, {}).addForces(mesh, x, v, dt, fFresh, p);
         EXPECT_EQ(penKept, penFresh);
         for (int i = 0; i < mesh.nNodes(); ++i) worst = std::max(worst, (fKept[i] - fFresh[i]).norm());
         ++evaluations;
