@@ -360,6 +360,7 @@ void ExplicitSolid::step(double dt)
     if (!(dt > 0) || !std::isfinite(dt)) {
         throw Error("ExplicitSolid::step: time step must be positive");
     }
+    if (loadUpdate_) loadUpdate_(t_);
     const double dtAvg = 0.5 * (dtLast_ + dt);
     accelerationForces(work_, std::max(dt, dtAvg));
 

@@ -53,6 +53,10 @@ public:
     // held constant during advance()
     std::vector<Vec3>& externalForce() { return fext_; }
     const std::vector<Vec3>& externalForce() const { return fext_; }
+    // Called at the start of every step (also every sub-step of advance())
+    // with the step's start time, to update time-dependent loads through
+    // externalForce() and setBodyForce(); none by default
+    void setLoadUpdate(std::function<void(double t)> update) { loadUpdate_ = std::move(update); }
 
     // --- contact (paper Eq. 43) ------------------------------------------
     // Frictionless penalty contact between parts / within a part; the
@@ -150,6 +154,7 @@ private:
     std::vector<double> contactPressure_;
     double maxPenetration_ = 0;
     Vec3 bodyForce_ = Vec3::Zero();
+    std::function<void(double)> loadUpdate_;
     double t_ = 0, dtLast_ = 0, hMin_ = 0;
     long nSteps_ = 0;
 };
