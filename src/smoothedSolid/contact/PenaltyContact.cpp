@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdint>
+#include <string>
 #include <unordered_map>
 
 namespace smoothedSolid {
@@ -111,12 +113,22 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double hMin, double waveModu
                                ContactOptions options)
     : options_(options), mass_(mass)
 {
-    if (!(options_.stepFraction > 0 && options_.stepFraction < 1)) {
-        throw Error("contact: the stable step fraction must lie in (0, 1), not " +
-                    std::to_string(options_.stepFraction));
-    }
-    if (!(options_.penaltyScale > 0)) throw Error("contact: the penalty scale must be positive");
-    omegaE2_ = 4.0 * waveModulus / (density * hMin * hMin);
+    auto range = [](const char* name, double v, bool ok, const char* allowed) {
+        if (!ok || !std::isfinite(v)) {
+            throw Error(std::string("contact option ") + name + " = " + std::to_string(v) +
+                        " is out of range: it must lie in " + allowed);
+        }
+    };
+    range("stepFraction", options_.stepFraction,
+          options_.stepFraction > 0 && options_.stepFraction < 1, "(0, 1)");
+    range("penaltyScale", options_.penaltyScale, options_.penaltyScale > 0, "(0, inf)");
+    range("depthFraction", options_.depthFraction,
+          options_.depthFraction > 0 && options_.depthFraction <= 1, "(0, 1]");
+    range("facingCosine", options_.facingCosine,
+          options_.facingCosine >= 0 && options_.facingCosine < 1, "[0, 1)");
+    range("dampingRatio", options_.dampingRatio,
+          options_.dampingRatio >= 0 && options_.dampingRatio <= 1, "[0, 1]");
+    (void)density;
     const int nn = mesh.nNodes();
     const auto& X = mesh.coordinates();
     depth_ = options_.depthFraction * hMin;
@@ -174,6 +186,31 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double hMin, double waveModu
             std::sort(nb.begin(), nb.end());
             nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
         }
+        // The undeformed body must not be in contact with itself: a node
+        // within the search depth of a facing triangle of its own part means
+        // the body is thinner than the depth (the two faces of a thin
+        // leaflet would push each other apart)
+        std::vector<double> none(nn, 0.0);
+        std::vector<Vec3> f(nn, Vec3::Zero()), v(nn, Vec3::Zero());
+        std::vector<double> pressure;
+        const ContactOptions keep = options_;
+        options_.betweenParts = false;
+        addForces(mesh, X, v, 1.0, none, f, pressure);
+        options_ = keep;
+        for (const Pair& c : pairs_) {
+            if (c.id < 0) continue;
+            throw Error("contact option depthFraction = " + std::to_string(options_.depthFraction) +
+                        " (search depth " + std::to_string(depth_) + " m) lets node " +
+                        std::to_string(c.node) + " see a boundary face of its own part " +
+                        std::to_string(-c.gap) +
+                        " m behind it in the undeformed mesh: the body is thinner than the "
+                        "search depth there; lower depthFraction below " +
+                        std::to_string(options_.depthFraction * (-c.gap) / depth_) +
+                        " or use more elements through the thickness");
+        }
+        built_ = false;
+        builds_ = 0;
+        pairs_.clear();
     }
 }
 
@@ -283,7 +320,8 @@ void PenaltyContact::buildCandidates(const TetMesh& mesh, const std::vector<Vec3
 
 double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& x,
                                  const std::vector<Vec3>& velocity, double dt,
-                                 std::vector<Vec3>& f, std::vector<double>& pressure) const
+                                 const std::vector<double>& omega2, std::vector<Vec3>& f,
+                                 std::vector<double>& pressure) const
 {
     pressure.assign(mesh_.nNodes(), 0.0);
     if (!(options_.betweenParts || options_.selfContact) && rigidTri_.empty()) return 0.0;
@@ -334,9 +372,10 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
     }
 
     // Limit the stiffness where a node's Gershgorin bound would exceed the
-    // budget the step leaves (see the header):
+    // budget the step leaves beside the elements' (see the header):
     // load_i = (1/m_i) sum_pairs k |b_i| sum_j |b_j|
-    const double budget = std::max(0.0, std::pow(2.0 * safety_ / dt, 2) - omegaE2_);
+    const double total = std::pow(2.0 * safety_ / dt, 2);
+    auto budget = [&](int i) { return std::max(0.0, total - omega2[i]); };
     auto nodesOf = [&](const Pair& c, int v[4], double b[4]) {
         v[0] = c.node, b[0] = 1;
         if (c.id < 0) return 1;
@@ -358,7 +397,9 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
         const int n = nodesOf(c, v, b);
         double scale = 1.0;
         for (int i = 0; i < n; ++i) {
-            if (b[i] > 0 && load_[v[i]] > budget) scale = std::min(scale, budget / load_[v[i]]);
+            if (b[i] > 0 && load_[v[i]] > budget(v[i])) {
+                scale = std::min(scale, budget(v[i]) / load_[v[i]]);
+            }
         }
         // Spring and normal dashpot on the relative normal velocity
         // (critical damping ratio zeta of the pair's spring with the
@@ -382,6 +423,88 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
         }
     }
     return maxPenetration;
+}
+
+// ---------------------------------------------------------------------------
+
+namespace {
+
+template <class T>
+void putVec(std::ostream& os, const std::vector<T>& v)
+{
+    const std::int64_t n = static_cast<std::int64_t>(v.size());
+    os.write(reinterpret_cast<const char*>(&n), sizeof n);
+    os.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(sizeof(T) * v.size()));
+}
+
+template <class T>
+bool getVec(std::istream& is, std::vector<T>& v)
+{
+    std::int64_t n = -1;
+    is.read(reinterpret_cast<char*>(&n), sizeof n);
+    if (!is || n < 0 || n > (std::int64_t(1) << 34)) return false;
+    v.resize(static_cast<std::size_t>(n));
+    is.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(sizeof(T) * v.size()));
+    return bool(is);
+}
+
+}  // namespace
+
+void PenaltyContact::writeState(std::ostream& os) const
+{
+    const std::int32_t built = built_ ? 1 : 0;
+    const std::int64_t builds = builds_;
+    const std::int64_t slaves = static_cast<std::int64_t>(slaveNodes_.size());
+    os.write(reinterpret_cast<const char*>(&slaves), sizeof slaves);
+    os.write(reinterpret_cast<const char*>(&built), sizeof built);
+    os.write(reinterpret_cast<const char*>(&builds), sizeof builds);
+    putVec(os, candStart_);
+    putVec(os, cand_);
+    putVec(os, xBuild_);
+}
+
+std::unique_ptr<PenaltyContact::State> PenaltyContact::readState(std::istream& is,
+                                                                 const std::string& file) const
+{
+    auto bad = [&](const std::string& what) {
+        throw Error("state file '" + file + "': contact state " + what);
+    };
+    std::int64_t slaves = -1, builds = 0;
+    std::int32_t built = 0;
+    is.read(reinterpret_cast<char*>(&slaves), sizeof slaves);
+    is.read(reinterpret_cast<char*>(&built), sizeof built);
+    is.read(reinterpret_cast<char*>(&builds), sizeof builds);
+    if (!is) bad("is truncated");
+    if (slaves != static_cast<std::int64_t>(slaveNodes_.size())) {
+        bad("has " + std::to_string(slaves) + " boundary nodes, this solid has " +
+            std::to_string(slaveNodes_.size()));
+    }
+    auto s = std::make_unique<State>();
+    s->built = built != 0;
+    s->builds = builds;
+    if (!getVec(is, s->candStart) || !getVec(is, s->cand) || !getVec(is, s->xBuild)) bad("is truncated");
+    if (s->built) {
+        const std::size_t ns = slaveNodes_.size();
+        if (s->candStart.size() != ns + 1 || s->xBuild.size() != ns ||
+            static_cast<std::size_t>(s->candStart.back()) != s->cand.size()) {
+            bad("is inconsistent with this solid's boundary");
+        }
+        const int nTri = static_cast<int>(rigidTri_.size());
+        for (int id : s->cand) {
+            if (id < -nTri) bad("refers to rigid triangle " + std::to_string(-1 - id) + " of " +
+                                std::to_string(nTri) + ": add the same rigid surfaces before loading");
+        }
+    }
+    return s;
+}
+
+void PenaltyContact::setState(State state)
+{
+    built_ = state.built;
+    builds_ = state.builds;
+    candStart_ = std::move(state.candStart);
+    cand_ = std::move(state.cand);
+    xBuild_ = std::move(state.xBuild);
 }
 
 }  // namespace smoothedSolid

@@ -28,19 +28,19 @@
 // -w_2) to the stiffness. Each step, the pairs found are scaled down where
 // needed so that every node's Gershgorin bound of M^-1 K_contact,
 //   (1/m_i) sum_pairs k |b_i| sum_j |b_j|,
-// stays below the budget the step dt leaves beside the elements:
-//   omega_c^2 <= (2 s / dt)^2 - omega_e^2,  omega_e = 2 c / h_min, s = 0.9,
-// so that (omega_e^2 + omega_c^2) dt^2 <= (2 s)^2. This matters for light
-// nodes (corners) of a deformable surface that collect the reactions of
-// several heavier nodes of the other body. While anything is near contact
-// (a candidate within the search reach), the stable step is the
-// contact-free one times stepFraction (0.5: the paper halves the step in
-// contact): there the budget, (0.9^2/(0.5 x 0.8)^2 - 1) omega_e^2 = 4
-// omega_e^2 with the default safety 0.8, rarely limits the nominal springs.
-// At the contact-free step (contact that starts within a longer step, or a
-// caller that keeps the step fixed) the budget is 0.27 omega_e^2 and the
-// springs are softer; with a solid safety factor of 0.9 or more, contact
-// acts only at the reduced step.
+// stays below the budget the step dt leaves beside the elements' own bound
+// omega_i^2 of the same node (dynamics/StableStep.hpp, current configuration):
+//   omega_c,i^2 <= (2 s / dt)^2 - omega_i^2,  s = 0.9,
+// so that the Gershgorin bound of the sum, M^-1 (K_elements + K_contact), stays
+// below (2 s / dt)^2. This matters for light nodes (corners) of a deformable
+// surface that collect the reactions of several heavier nodes of the other
+// body. While anything is near contact (a candidate within the search
+// reach), the stable step is the contact-free one times stepFraction (0.5:
+// the paper halves the step in contact): there the budget is at least
+// (0.9^2/(0.5 x 0.8)^2 - 1) max omega^2 = 4 max omega^2 with the default
+// safety 0.8, which rarely limits the nominal springs. At the contact-free
+// step (contact that starts within a longer step, or a caller that keeps
+// the step fixed) the budget is 0.27 max omega^2 and the springs are softer.
 // The dashpot (zeta = 0.1 by default) removes the energy that the explicit
 // step can otherwise add when contact starts between two steps (up to a few
 // percent of the impact energy without it).
@@ -49,6 +49,9 @@
 #include "mesh/TetMesh.hpp"
 
 #include <array>
+#include <istream>
+#include <memory>
+#include <ostream>
 #include <vector>
 
 namespace smoothedSolid {
@@ -58,20 +61,25 @@ struct RigidSurface {
     std::vector<Tri> triangles;  // normals (x1-x0)x(x2-x0) toward the solid's side
 };
 
+// Options; PenaltyContact's constructor checks each range and names the
+// option it rejects
 struct ContactOptions {
     bool betweenParts = true;
     bool selfContact = false;
-    double penaltyScale = 2.0;  // beta
-    double depthFraction = 0.5; // search depth = fraction * smallest element height
-    double facingCosine = 0.2;  // contact only if n_node . n_triangle < -facingCosine
-    double dampingRatio = 0.1;  // normal dashpot, fraction of critical
-    double stepFraction = 0.5;  // stable step with contact / without (paper: halved)
+    double penaltyScale = 2.0;  // beta, > 0
+    double depthFraction = 0.5; // search depth = fraction * smallest element height, (0, 1]
+    double facingCosine = 0.2;  // contact only if n_node . n_triangle < -facingCosine, [0, 1)
+    double dampingRatio = 0.1;  // normal dashpot, fraction of critical, [0, 1]
+    double stepFraction = 0.5;  // stable step with contact / without (paper: halved), (0, 1)
 };
 
 class PenaltyContact {
 public:
     // hMin: smallest element height; waveModulus, density: M = K + 4 mu/3
-    // and rho of the material; mass: lumped nodal masses
+    // and rho of the material; mass: lumped nodal masses. With self
+    // contact, a boundary node that already lies within the search depth
+    // of a facing boundary triangle of its own part (a body thinner than
+    // the search depth, e.g. the two faces of a thin leaflet) throws.
     PenaltyContact(const TetMesh& mesh, double hMin, double waveModulus, double density,
                    const std::vector<double>& mass, ContactOptions options);
 
@@ -81,10 +89,12 @@ public:
     const std::vector<RigidSurface>& rigidSurfaces() const { return rigid_; }
 
     // Add contact forces for current coordinates x (velocities v) to f for
-    // a step dt; pressure per node (|force|/tributary area) into 'pressure'.
-    // Returns the largest penetration depth found.
+    // a step dt; omega2: the elements' Gershgorin bound per node (the
+    // springs' budget); pressure per node (|force|/tributary area) into
+    // 'pressure'. Returns the largest penetration depth found.
     double addForces(const TetMesh& mesh, const std::vector<Vec3>& x,
-                     const std::vector<Vec3>& velocity, double dt, std::vector<Vec3>& f,
+                     const std::vector<Vec3>& velocity, double dt,
+                     const std::vector<double>& omega2, std::vector<Vec3>& f,
                      std::vector<double>& pressure) const;
 
     // The candidate search for coordinates x (addForces makes it too): the
@@ -98,6 +108,19 @@ public:
     // How often the candidate lists were built (the first build included)
     long candidateBuilds() const { return builds_; }
 
+    // The search state that decides the next forces and steps (candidate
+    // lists and where they were built), for exact restarts
+    struct State {
+        bool built;
+        long builds;
+        std::vector<int> candStart, cand;
+        std::vector<Vec3> xBuild;
+    };
+    void writeState(std::ostream& os) const;
+    // Reads and checks a state written by writeState (file: for messages)
+    std::unique_ptr<State> readState(std::istream& is, const std::string& file) const;
+    void setState(State state);
+
 private:
     ContactOptions options_;
     std::vector<int> slaveNodes_;
@@ -110,7 +133,6 @@ private:
     std::vector<RigidSurface> rigid_;
     std::vector<std::array<int, 2>> rigidTri_;  // (surface, triangle) for id -1 - i
     double depth_ = 0;
-    double omegaE2_ = 0;  // (2 c / h_min)^2
     static constexpr double safety_ = 0.9;
 
     struct Pair {

@@ -8,80 +8,63 @@
 
 namespace smoothedSolid {
 
+namespace {
+
+std::vector<double> nodalMass(const TetMesh& mesh, double rho)
+{
+    std::vector<double> m(mesh.nNodes(), 0.0);
+    for (int e = 0; e < mesh.nElements(); ++e) {
+        const double me = 0.25 * rho * mesh.elementVolume(e);
+        for (int v : mesh.elements()[e]) m[v] += me;
+    }
+    return m;
+}
+
+const std::shared_ptr<const Material>& checked(const std::shared_ptr<const Material>& m)
+{
+    if (!m) throw Error("ExplicitSolid: no material");
+    return m;
+}
+
+}  // namespace
+
 ExplicitSolid::ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> material,
                              SolidOptions options)
-    : mesh_(std::move(mesh)), material_(std::move(material)), options_(options)
+    : mesh_(std::make_shared<const TetMesh>(std::move(mesh))),
+      material_(checked(material)),
+      options_(options),
+      smoothing_(mesh_),
+      uses_(domainUses(options.formulation)),
+      bound_(smoothing_, options.formulation, nodalMass(*mesh_, material_->density())),
+      mass_(nodalMass(*mesh_, material_->density()))
 {
-    if (!material_) throw Error("ExplicitSolid: no material");
     if (!(options_.safety > 0 && options_.safety <= 1)) {
-        throw Error("ExplicitSolid: safety factor must lie in (0, 1]");
+        throw Error("ExplicitSolid: safety factor must lie in (0, 1], not " +
+                    std::to_string(options_.safety));
     }
-    switch (options_.formulation) {
-        case Formulation::FEM_T4: main_ = elementDomains(mesh_); break;
-        case Formulation::NS_FEM: main_ = nodeDomains(mesh_); break;
-        case Formulation::FS_FEM: main_ = faceDomains(mesh_); break;
-        case Formulation::Selective:
-            main_ = faceDomains(mesh_);
-            volumetric_ = nodeDomains(mesh_);
-            break;
+    if (!(options_.damping >= 0) || !std::isfinite(options_.damping)) {
+        throw Error("ExplicitSolid: the damping coefficient must be non-negative");
     }
-
-    const int ne = mesh_.nElements();
-    elemGrad_.resize(ne);
-    quarterVolume_.resize(ne);
-    for (int e = 0; e < ne; ++e) {
-        elemGrad_[e] = elementGradients(mesh_, e);
-        quarterVolume_[e] = 0.25 * mesh_.elementVolume(e);
-    }
-    faceWeight_.resize(mesh_.faces().size());
-    for (std::size_t f = 0; f < mesh_.faces().size(); ++f) {
-        const Face& fc = mesh_.faces()[f];
-        const double vo = quarterVolume_[fc.owner];
-        const double vn = fc.neighbour >= 0 ? quarterVolume_[fc.neighbour] : 0.0;
-        faceWeight_[f] = {vo / (vo + vn), vn / (vo + vn)};
-    }
-    {
-        const auto& start = mesh_.nodeElementStart();
-        const auto& elems = mesh_.nodeElements();
-        nodeWeight_.resize(elems.size());
-        for (int k = 0; k < mesh_.nNodes(); ++k) {
-            double V = 0;
-            for (int i = start[k]; i < start[k + 1]; ++i) V += quarterVolume_[elems[i]];
-            for (int i = start[k]; i < start[k + 1]; ++i) {
-                nodeWeight_[i] = quarterVolume_[elems[i]] / V;
-            }
-        }
-    }
+    const int ne = mesh_->nElements();
     Fe_.resize(ne);
     Pbar_.resize(ne);
-    Pf_.resize(mesh_.faces().size());
-    Pn_.resize(mesh_.nNodes());
-    {
-        // local index (0..3) of each node in each element around it
-        const auto& start = mesh_.nodeElementStart();
-        const auto& elems = mesh_.nodeElements();
-        nodeLocal_.resize(elems.size());
-        for (int k = 0; k < mesh_.nNodes(); ++k) {
-            for (int i = start[k]; i < start[k + 1]; ++i) {
-                const Tet& t = mesh_.elements()[elems[i]];
-                nodeLocal_[i] = static_cast<std::uint8_t>(std::find(t.begin(), t.end(), k) - t.begin());
-            }
-        }
+    Fd_.resize(uses_.size());
+    Pd_.resize(uses_.size());
+    for (std::size_t k = 0; k < uses_.size(); ++k) {
+        Fd_[k].resize(smoothing_.size(uses_[k].kind));
+        Pd_[k].resize(smoothing_.size(uses_[k].kind));
     }
 
-    const int n = mesh_.nNodes();
-    mass_.assign(n, 0.0);
+    const int n = mesh_->nNodes();
     hMin_ = std::numeric_limits<double>::max();
-    for (int e = 0; e < mesh_.nElements(); ++e) {
-        const double m = 0.25 * material_->density() * mesh_.elementVolume(e);
-        for (int v : mesh_.elements()[e]) mass_[v] += m;
-        hMin_ = std::min(hMin_, mesh_.elementHeight(e));
-    }
+    for (int e = 0; e < ne; ++e) hMin_ = std::min(hMin_, mesh_->elementHeight(e));
     u_.assign(n, Vec3::Zero());
     vHalf_.assign(n, Vec3::Zero());
     fext_.assign(n, Vec3::Zero());
     work_.assign(n, Vec3::Zero());
     x_.assign(n, Vec3::Zero());
+    deformationGradients(u_);
+    refreshBound();
 }
 
 // ---------------------------------------------------------------------------
@@ -95,40 +78,68 @@ void ExplicitSolid::fix(const std::string& nodeSet, std::array<bool, 3> componen
 void ExplicitSolid::prescribeDisplacement(const std::string& nodeSet, VectorFunction u,
                                           std::array<bool, 3> components)
 {
-    constraints_.push_back({mesh_.nodeSet(nodeSet), components, std::move(u), false});
+    constraints_.push_back({mesh_->nodeSet(nodeSet), components, std::move(u), false});
 }
 
 void ExplicitSolid::prescribeVelocity(const std::string& nodeSet, VectorFunction v,
                                       std::array<bool, 3> components)
 {
-    constraints_.push_back({mesh_.nodeSet(nodeSet), components, std::move(v), true});
+    constraints_.push_back({mesh_->nodeSet(nodeSet), components, std::move(v), true});
 }
 
 void ExplicitSolid::addFollowerPressure(const std::string& faceSet, ScalarFunction p)
 {
-    pressures_.push_back({mesh_.faceSet(faceSet), std::move(p)});
+    pressures_.push_back({mesh_->faceSet(faceSet), std::move(p)});
 }
 
 // ---------------------------------------------------------------------------
 
 double ExplicitSolid::stableTimeStep() const
 {
-    const double c = std::sqrt(material_->waveModulus() / material_->density());
-    const double dt = options_.safety * hMin_ / c;
+    const double dt = options_.safety * 2.0 / std::sqrt(omega2Max_);
     if (!contact_) return dt;
     // near contact as of the last search (each force evaluation makes one)
-    if (!contact_->searched()) contact_->search(mesh_, currentCoordinates());
+    if (!contact_->searched()) contact_->search(*mesh_, currentCoordinates());
     return contact_->nearContact() ? dt * contact_->options().stepFraction : dt;
+}
+
+double ExplicitSolid::stableTimeStep(const std::vector<Vec3>& u) const
+{
+    if (u.size() != u_.size()) throw Error("stableTimeStep(u): u has the wrong size");
+    deformationGradients(u);
+    std::vector<const std::vector<Mat3>*> F;
+    for (const auto& f : Fd_) F.push_back(&f);
+    std::vector<double> omega2;
+    const double w2 = bound_.evaluate(*material_, F, omega2);
+    return options_.safety * 2.0 / std::sqrt(w2);
+}
+
+void ExplicitSolid::refreshBound()
+{
+    std::vector<const std::vector<Mat3>*> F;
+    for (const auto& f : Fd_) F.push_back(&f);
+    const double previous = omega2Max_;
+    omega2Max_ = bound_.evaluate(*material_, F, nodeOmega2_);
+    if (!std::isfinite(omega2Max_) || !(omega2Max_ > 0)) {
+        throw Error("stable time step: no finite bound at t = " + std::to_string(t_) +
+                    " (step " + std::to_string(nSteps_) + "): a smoothing domain has degenerated");
+    }
+    if (previous > 0) {
+        const double ratio = omega2Max_ / previous;
+        if (ratio > 1.05) boundInterval_ = std::max(1, boundInterval_ / 2);
+        else if (ratio < 1.01 && ratio > 1.0 / 1.01) boundInterval_ = std::min(kMaxStableStepInterval, 2 * boundInterval_);
+    }
+    boundAge_ = 0;
 }
 
 void ExplicitSolid::enableContact(ContactOptions options)
 {
     std::vector<RigidSurface> keep;
     if (contact_) keep = contact_->rigidSurfaces();
-    contact_ = std::make_unique<PenaltyContact>(mesh_, hMin_, material_->waveModulus(),
+    contact_ = std::make_unique<PenaltyContact>(*mesh_, hMin_, material_->waveModulus(),
                                                 material_->density(), mass_, options);
     for (auto& s : keep) contact_->addRigidSurface(std::move(s));
-    contactPressure_.assign(mesh_.nNodes(), 0.0);
+    contactPressure_.assign(mesh_->nNodes(), 0.0);
 }
 
 void ExplicitSolid::addRigidSurface(RigidSurface surface)
@@ -137,142 +148,123 @@ void ExplicitSolid::addRigidSurface(RigidSurface surface)
     contact_->addRigidSurface(std::move(surface));
 }
 
+void ExplicitSolid::deformationGradients(const std::vector<Vec3>& u) const
+{
+    smoothing_.elementF(u, Fe_);
+    for (std::size_t k = 0; k < uses_.size(); ++k) {
+        if (uses_[k].kind == DomainKind::Element) Fd_[k] = Fe_;
+        else smoothing_.domainF(uses_[k].kind, Fe_, Fd_[k]);
+    }
+}
+
+namespace {
+
+const char* kindName(DomainKind k)
+{
+    switch (k) {
+        case DomainKind::Element: return "element";
+        case DomainKind::Face: return "face";
+        case DomainKind::Node: return "node";
+    }
+    return "?";
+}
+
+}  // namespace
+
 // The internal force in gather form, so that every loop writes only its own
 // entries and runs in parallel with OpenMP (when built with it):
 //   F_e            per element
-//   P_d = P(F_d)   per smoothing domain, F_d the weighted mean of its F_e
+//   F_d            per smoothing domain: the weighted mean of its F_e (Eq. 23)
+//   P_d = P(F_d)   (the deviatoric or volumetric part with the selective scheme)
 //   Pbar_e = (V_e/4) sum of the P_d of the domains e takes part in
-//   f_I = sum_{e around I} Pbar_e g_eI
+//            (V_e P_e for FEM-T4)
+//   f_I = sum_{e around I} Pbar_e g_eI   (Eq. 31 with the first PK stress)
 std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
 {
     const Material& m = *material_;
-    const auto& tets = mesh_.elements();
-    const int ne = mesh_.nElements();
-    const int nn = mesh_.nNodes();
-    const int nf = static_cast<int>(mesh_.faces().size());
+    const TetMesh& mesh = *mesh_;
+    const int ne = mesh.nElements();
+    deformationGradients(u);
 
-    // Element deformation gradients F_e = I + sum_a u_a (x) g_ea
+    for (std::size_t k = 0; k < uses_.size(); ++k) {
+        const DomainUse use = uses_[k];
+        const std::vector<Mat3>& F = Fd_[k];
+        std::vector<Mat3>& P = Pd_[k];
+        const int nd = static_cast<int>(F.size());
+        // An inverted domain is recorded (lowest index) inside the parallel
+        // loop and reported after it: exceptions cannot leave an OpenMP loop
+        int bad = std::numeric_limits<int>::max();
+#pragma omp parallel for schedule(static) reduction(min : bad)
+        for (int d = 0; d < nd; ++d) {
+            if (!(F[d].determinant() > 0)) {
+                bad = std::min(bad, d);
+                P[d].setZero();
+                continue;
+            }
+            switch (use.part) {
+                case StressPart::Full: P[d] = m.firstPK(F[d]); break;
+                case StressPart::Deviatoric: P[d] = m.stressDeviatoric(F[d]); break;
+                case StressPart::Volumetric: P[d] = m.stressVolumetric(F[d]); break;
+            }
+        }
+        if (bad != std::numeric_limits<int>::max()) {
+            std::string where = std::string(kindName(use.kind)) + " smoothing domain " + std::to_string(bad);
+            if (use.kind == DomainKind::Face) {
+                const Face& f = mesh.faces()[bad];
+                where += " (between elements " + std::to_string(f.owner) +
+                         (f.neighbour >= 0 ? " and " + std::to_string(f.neighbour) : std::string()) + ")";
+            } else if (use.kind == DomainKind::Node) {
+                where += " (around node " + std::to_string(bad) + ")";
+            }
+            throw Error("inverted material in " + where + " at t = " + std::to_string(t_) +
+                        ", step " + std::to_string(nSteps_) +
+                        " (det F = " + std::to_string(F[bad].determinant()) +
+                        "): the time step or the load is too large");
+        }
+    }
+
+    const auto& tets = mesh.elements();
+    const auto& elemFaces = mesh.elementFaces();
 #pragma omp parallel for schedule(static)
     for (int e = 0; e < ne; ++e) {
-        const Tet& t = tets[e];
-        const auto& g = elemGrad_[e];
-        Mat3 F = Mat3::Identity();
-        for (int a = 0; a < 4; ++a) F.noalias() += u[t[a]] * g.row(a);
-        Fe_[e] = F;
-    }
-
-    // An inverted domain is recorded (lowest index) inside the parallel
-    // loops and reported after them: exceptions cannot leave an OpenMP loop
-    int badDomain = std::numeric_limits<int>::max();
-    double badDet = 0;
-    const char* badKind = "";
-    auto check = [&](const Mat3& F, int d, const char* kind) {
-        const double J = F.determinant();
-        if (!(J > 0)) {
-#pragma omp critical(smoothedSolidInverted)
-            if (d < badDomain) badDomain = d, badDet = J, badKind = kind;
-            return false;
-        }
-        return true;
-    };
-    auto report = [&] {
-        if (badDomain == std::numeric_limits<int>::max()) return;
-        throw Error("inverted material in " + std::string(badKind) + " smoothing domain " +
-                    std::to_string(badDomain) + " at t = " + std::to_string(t_) +
-                    " (det F = " + std::to_string(badDet) +
-                    "): the time step or the load is too large");
-    };
-    // Face domains (Eq. 22 on the face-based domains): F_f from the one or
-    // two elements sharing f
-    auto faces = [&](auto stress) {
-        const auto& fs = mesh_.faces();
-#pragma omp parallel for schedule(static)
-        for (int f = 0; f < nf; ++f) {
-            const Face& fc = fs[f];
-            const auto& w = faceWeight_[f];
-            Mat3 F = w[0] * Fe_[fc.owner];
-            if (fc.neighbour >= 0) F.noalias() += w[1] * Fe_[fc.neighbour];
-            Pf_[f] = check(F, f, "face") ? stress(F) : Mat3::Zero();
-        }
-        report();
-        const auto& elemFaces = mesh_.elementFaces();
-#pragma omp parallel for schedule(static)
-        for (int e = 0; e < ne; ++e) {
-            const auto& ef = elemFaces[e];
-            Pbar_[e] = quarterVolume_[e] * (Pf_[ef[0]] + Pf_[ef[1]] + Pf_[ef[2]] + Pf_[ef[3]]);
-        }
-    };
-    // Node domains: F_k from the elements around k
-    auto nodes = [&](auto stress, bool add) {
-        const auto& start = mesh_.nodeElementStart();
-        const auto& elems = mesh_.nodeElements();
-#pragma omp parallel for schedule(static)
-        for (int k = 0; k < nn; ++k) {
-            Mat3 F = Mat3::Zero();
-            for (int i = start[k]; i < start[k + 1]; ++i) F.noalias() += nodeWeight_[i] * Fe_[elems[i]];
-            Pn_[k] = check(F, k, "node") ? stress(F) : Mat3::Zero();
-        }
-        report();
-#pragma omp parallel for schedule(static)
-        for (int e = 0; e < ne; ++e) {
-            const Tet& t = tets[e];
-            const Mat3 P = quarterVolume_[e] * (Pn_[t[0]] + Pn_[t[1]] + Pn_[t[2]] + Pn_[t[3]]);
-            if (add) Pbar_[e] += P;
-            else Pbar_[e] = P;
-        }
-    };
-    auto full = [&](const Mat3& F) { return m.firstPK(F); };
-
-    switch (options_.formulation) {
-        case Formulation::FEM_T4:
-#pragma omp parallel for schedule(static)
-            for (int e = 0; e < ne; ++e) {
-                Pbar_[e] = check(Fe_[e], e, "element") ? Mat3(4.0 * quarterVolume_[e] * full(Fe_[e]))
-                                                       : Mat3::Zero();
+        Mat3 S = Mat3::Zero();
+        for (std::size_t k = 0; k < uses_.size(); ++k) {
+            const std::vector<Mat3>& P = Pd_[k];
+            switch (uses_[k].kind) {
+                case DomainKind::Element: S.noalias() += 4.0 * P[e]; break;
+                case DomainKind::Face: {
+                    const auto& ef = elemFaces[e];
+                    S.noalias() += P[ef[0]] + P[ef[1]] + P[ef[2]] + P[ef[3]];
+                    break;
+                }
+                case DomainKind::Node: {
+                    const Tet& t = tets[e];
+                    S.noalias() += P[t[0]] + P[t[1]] + P[t[2]] + P[t[3]];
+                    break;
+                }
             }
-            report();
-            break;
-        case Formulation::FS_FEM: faces(full); break;
-        case Formulation::NS_FEM: nodes(full, false); break;
-        case Formulation::Selective:
-            // Sect. 3.2: deviatoric stress on face-based domains, volumetric
-            // stress on node-based domains
-            faces([&](const Mat3& F) { return m.stressDeviatoric(F); });
-            nodes([&](const Mat3& F) { return m.stressVolumetric(F); }, true);
-            break;
-    }
-
-    // f_I = sum_e Pbar_e g_eI (Eq. 31 with the first Piola-Kirchhoff stress)
-    std::vector<Vec3> f(nn);
-    const auto& start = mesh_.nodeElementStart();
-    const auto& elems = mesh_.nodeElements();
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < nn; ++k) {
-        Vec3 fk = Vec3::Zero();
-        for (int i = start[k]; i < start[k + 1]; ++i) {
-            const int e = elems[i];
-            fk.noalias() += Pbar_[e] * elemGrad_[e].row(nodeLocal_[i]).transpose();
         }
-        f[k] = fk;
+        Pbar_[e] = smoothing_.quarterVolume(e) * S;
     }
+    std::vector<Vec3> f;
+    smoothing_.gatherForce(Pbar_, f);
     return f;
 }
 
 double ExplicitSolid::strainEnergy(const std::vector<Vec3>& u) const
 {
     const Material& m = *material_;
+    deformationGradients(u);
     double W = 0;
-    if (options_.formulation == Formulation::Selective) {
-        for (int d = 0; d < main_.size(); ++d) {
-            W += main_.volume[d] * m.energyDeviatoric(main_.deformationGradient(d, u));
-        }
-        for (int d = 0; d < volumetric_.size(); ++d) {
-            W += volumetric_.volume[d] *
-                 m.energyVolumetric(volumetric_.deformationGradient(d, u));
-        }
-    } else {
-        for (int d = 0; d < main_.size(); ++d) {
-            W += main_.volume[d] * m.energy(main_.deformationGradient(d, u));
+    for (std::size_t k = 0; k < uses_.size(); ++k) {
+        const std::vector<Mat3>& F = Fd_[k];
+        for (int d = 0; d < static_cast<int>(F.size()); ++d) {
+            const double V = smoothing_.volume(uses_[k].kind, d);
+            switch (uses_[k].part) {
+                case StressPart::Full: W += V * m.energy(F[d]); break;
+                case StressPart::Deviatoric: W += V * m.energyDeviatoric(F[d]); break;
+                case StressPart::Volumetric: W += V * m.energyVolumetric(F[d]); break;
+            }
         }
     }
     return W;
@@ -281,20 +273,29 @@ double ExplicitSolid::strainEnergy(const std::vector<Vec3>& u) const
 double ExplicitSolid::kineticEnergy() const
 {
     double K = 0;
-    for (int i = 0; i < mesh_.nNodes(); ++i) K += 0.5 * mass_[i] * vHalf_[i].squaredNorm();
+    for (int i = 0; i < mesh_->nNodes(); ++i) K += 0.5 * mass_[i] * vHalf_[i].squaredNorm();
     return K;
 }
 
 void ExplicitSolid::setInitialVelocity(const VectorFunction& v0)
 {
     if (nSteps_ > 0) throw Error("setInitialVelocity: the solid has already been advanced");
-    for (int i = 0; i < mesh_.nNodes(); ++i) vHalf_[i] = v0(0.0, mesh_.coordinates()[i]);
+    for (int i = 0; i < mesh_->nNodes(); ++i) vHalf_[i] = v0(0.0, mesh_->coordinates()[i]);
+}
+
+void ExplicitSolid::setInitialDisplacement(const VectorFunction& u0)
+{
+    if (nSteps_ > 0) throw Error("setInitialDisplacement: the solid has already been advanced");
+    for (int i = 0; i < mesh_->nNodes(); ++i) u_[i] = u0(0.0, mesh_->coordinates()[i]);
+    internalForce(u_);  // throws on inverted material
+    omega2Max_ = 0;
+    refreshBound();
 }
 
 std::vector<Vec3> ExplicitSolid::currentCoordinates() const
 {
-    std::vector<Vec3> x(mesh_.coordinates());
-    for (int i = 0; i < mesh_.nNodes(); ++i) x[i] += u_[i];
+    std::vector<Vec3> x(mesh_->coordinates());
+    for (int i = 0; i < mesh_->nNodes(); ++i) x[i] += u_[i];
     return x;
 }
 
@@ -302,12 +303,12 @@ std::vector<Vec3> ExplicitSolid::currentCoordinates() const
 void ExplicitSolid::accelerationForces(std::vector<Vec3>& f, double dt)
 {
     f = internalForce(u_);
-    const int nn = mesh_.nNodes();
+    const int nn = mesh_->nNodes();
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < nn; ++i) f[i] = fext_[i] + mass_[i] * bodyForce_ - f[i];
 
     if (!pressures_.empty()) {
-        const auto& X = mesh_.coordinates();
+        const auto& X = mesh_->coordinates();
         for (const Pressure& pr : pressures_) {
             const double p = pr.p(t_);
             for (const Tri& t : pr.faces) {
@@ -324,17 +325,17 @@ void ExplicitSolid::accelerationForces(std::vector<Vec3>& f, double dt)
     }
 
     if (contact_) {
-        const auto& X = mesh_.coordinates();
+        const auto& X = mesh_->coordinates();
 #pragma omp parallel for schedule(static)
         for (int i = 0; i < nn; ++i) x_[i] = X[i] + u_[i];
-        maxPenetration_ = contact_->addForces(mesh_, x_, vHalf_, dt, f,
+        maxPenetration_ = contact_->addForces(*mesh_, x_, vHalf_, dt, nodeOmega2_, f,
                                               contactPressure_);
     }
 }
 
 void ExplicitSolid::applyConstraints(double dt)
 {
-    const auto& X = mesh_.coordinates();
+    const auto& X = mesh_->coordinates();
     for (const Constraint& c : constraints_) {
         for (int i : c.nodes) {
             Vec3 v;
@@ -358,16 +359,34 @@ void ExplicitSolid::applyConstraints(double dt)
 void ExplicitSolid::step(double dt)
 {
     if (!(dt > 0) || !std::isfinite(dt)) {
-        throw Error("ExplicitSolid::step: time step must be positive");
+        throw Error("ExplicitSolid::step: the time step must be positive and finite, not " +
+                    std::to_string(dt));
     }
     if (loadUpdate_) loadUpdate_(t_);
     const double dtAvg = 0.5 * (dtLast_ + dt);
     accelerationForces(work_, std::max(dt, dtAvg));
 
+    // A state that stops being finite stops here, before it is stored
+    const int nn = mesh_->nNodes();
+    int bad = std::numeric_limits<int>::max();
+#pragma omp parallel for schedule(static) reduction(min : bad)
+    for (int i = 0; i < nn; ++i) {
+        if (!work_[i].allFinite() || !vHalf_[i].allFinite()) bad = std::min(bad, i);
+    }
+    if (bad != std::numeric_limits<int>::max()) {
+        throw Error("the solid's state stopped being finite at t = " + std::to_string(t_) +
+                    ", step " + std::to_string(nSteps_) + ": node " + std::to_string(bad) +
+                    " (reference position " + std::to_string(mesh_->coordinates()[bad].x()) + ", " +
+                    std::to_string(mesh_->coordinates()[bad].y()) + ", " +
+                    std::to_string(mesh_->coordinates()[bad].z()) +
+                    ") has a non-finite force or velocity; the state of the last step is kept");
+    }
+    // The stable step bound, from the domain F's this force evaluation made
+    if (++boundAge_ >= boundInterval_) refreshBound();
+
     const double c = 0.5 * options_.damping * dtAvg;
     const double a = (1.0 - c) / (1.0 + c);
     const double b = dtAvg / (1.0 + c);
-    const int nn = mesh_.nNodes();
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < nn; ++i) vHalf_[i] = a * vHalf_[i] + (b / mass_[i]) * work_[i];
     applyConstraints(dt);
@@ -380,10 +399,14 @@ void ExplicitSolid::step(double dt)
 }
 
 // Sub-steps of equal size within what is left of dt, re-chosen after each
-// one: the stable step shrinks when contact comes near
+// one: the stable step follows the deformation and shrinks when contact
+// comes near
 int ExplicitSolid::advance(double dt)
 {
-    if (dt <= 0) return 0;
+    if (!(dt > 0) || !std::isfinite(dt)) {
+        throw Error("ExplicitSolid::advance: the time interval must be positive and finite, not " +
+                    std::to_string(dt));
+    }
     double left = dt;
     int n = 0;
     for (;;) {
@@ -399,98 +422,167 @@ int ExplicitSolid::advance(double dt)
     }
 }
 
-}  // namespace smoothedSolid
-
-// ---------------------------------------------------------------------------
-
-namespace smoothedSolid {
-
+// Cauchy stress and J per element, from the domains it takes part in: the
+// mean of its 4 face (or node) domains' values, the element's own for FEM-T4;
+// with the selective scheme the deviatoric part from its face domains and
+// the volumetric part (and J) from its node domains
 void ExplicitSolid::elementStress(std::vector<Mat3>& sigma, std::vector<double>& J) const
 {
-    const int ne = mesh_.nElements();
+    const TetMesh& mesh = *mesh_;
+    const int ne = mesh.nElements();
     sigma.assign(ne, Mat3::Zero());
     J.assign(ne, 0.0);
     const Material& m = *material_;
-    const auto& elemFaces = mesh_.elementFaces();
-
-    // Cauchy part of a stress function evaluated with the domain's F
-    auto cauchyOf = [](const Mat3& P, const Mat3& F) {
-        return Mat3(P * F.transpose() / F.determinant());
-    };
-    auto perDomain = [&](const SmoothingDomains& sd, auto stress) {
-        std::vector<Mat3> s(sd.size());
-        std::vector<double> j(sd.size());
-        for (int d = 0; d < sd.size(); ++d) {
-            const Mat3 F = sd.deformationGradient(d, u_);
-            s[d] = cauchyOf(stress(F), F);
-            j[d] = F.determinant();
-        }
-        return std::make_pair(s, j);
-    };
-    auto dev = [&](const Mat3& F) { return m.stressDeviatoric(F); };
-    auto vol = [&](const Mat3& F) { return m.stressVolumetric(F); };
-    auto full = [&](const Mat3& F) { return m.firstPK(F); };
-
-    switch (options_.formulation) {
-        case Formulation::FEM_T4: {
-            const auto [s, j] = perDomain(main_, full);
-            sigma = s;
-            J = j;
-            break;
-        }
-        case Formulation::FS_FEM: {
-            const auto [s, j] = perDomain(main_, full);
-            for (int e = 0; e < ne; ++e) {
-                for (int f : elemFaces[e]) {
-                    sigma[e] += 0.25 * s[f];
-                    J[e] += 0.25 * j[f];
-                }
+    deformationGradients(u_);
+    for (std::size_t k = 0; k < uses_.size(); ++k) {
+        const std::vector<Mat3>& F = Fd_[k];
+        const int nd = static_cast<int>(F.size());
+        std::vector<Mat3> s(nd);
+        std::vector<double> j(nd);
+        for (int d = 0; d < nd; ++d) {
+            Mat3 P = Mat3::Zero();
+            switch (uses_[k].part) {
+                case StressPart::Full: P = m.firstPK(F[d]); break;
+                case StressPart::Deviatoric: P = m.stressDeviatoric(F[d]); break;
+                case StressPart::Volumetric: P = m.stressVolumetric(F[d]); break;
             }
-            break;
+            j[d] = F[d].determinant();
+            s[d] = P * F[d].transpose() / j[d];
         }
-        case Formulation::NS_FEM: {
-            const auto [s, j] = perDomain(main_, full);
-            for (int e = 0; e < ne; ++e) {
-                for (int v : mesh_.elements()[e]) {
-                    sigma[e] += 0.25 * s[v];
-                    J[e] += 0.25 * j[v];
-                }
+        const bool takesJ = uses_[k].part != StressPart::Deviatoric;
+        for (int e = 0; e < ne; ++e) {
+            switch (uses_[k].kind) {
+                case DomainKind::Element:
+                    sigma[e] += s[e];
+                    if (takesJ) J[e] += j[e];
+                    break;
+                case DomainKind::Face:
+                    for (int f : mesh.elementFaces()[e]) {
+                        sigma[e] += 0.25 * s[f];
+                        if (takesJ) J[e] += 0.25 * j[f];
+                    }
+                    break;
+                case DomainKind::Node:
+                    for (int v : mesh.elements()[e]) {
+                        sigma[e] += 0.25 * s[v];
+                        if (takesJ) J[e] += 0.25 * j[v];
+                    }
+                    break;
             }
-            break;
-        }
-        case Formulation::Selective: {
-            const auto [sf, jf] = perDomain(main_, dev);
-            const auto [sn, jn] = perDomain(volumetric_, vol);
-            for (int e = 0; e < ne; ++e) {
-                for (int f : elemFaces[e]) sigma[e] += 0.25 * sf[f];
-                for (int v : mesh_.elements()[e]) {
-                    sigma[e] += 0.25 * sn[v];
-                    J[e] += 0.25 * jn[v];
-                }
-            }
-            break;
         }
     }
 }
 
+// ---------------------------------------------------------------------------
+// State files: binary, native byte order.
+//   tag "smoothedSolid-state\0", version (int32),
+//   nodes, elements (int64), formulation, material (int32 length + chars),
+//   t, dtLast, nSteps, bound (omega2Max, age, interval, omega2 per node),
+//   u, v, f_ext, maxPenetration, contact flag (+ contact state, contact pressure)
+
 namespace {
-constexpr char kStateMagic[] = "smoothedSolid-state-1";
+
+constexpr char kStateTag[] = "smoothedSolid-state";
+constexpr std::int32_t kStateVersion = 2;
+
+template <class T>
+void put(std::ostream& os, const T& v)
+{
+    os.write(reinterpret_cast<const char*>(&v), sizeof v);
 }
+
+void putString(std::ostream& os, const std::string& s)
+{
+    put(os, static_cast<std::int32_t>(s.size()));
+    os.write(s.data(), static_cast<std::streamsize>(s.size()));
+}
+
+template <class T>
+void putVector(std::ostream& os, const std::vector<T>& v)
+{
+    put(os, static_cast<std::int64_t>(v.size()));
+    os.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(sizeof(T) * v.size()));
+}
+
+class Reader {
+public:
+    Reader(std::istream& is, std::string file) : is_(is), file_(std::move(file)) {}
+
+    template <class T>
+    T get(const char* what)
+    {
+        T v{};
+        is_.read(reinterpret_cast<char*>(&v), sizeof v);
+        if (!is_) truncated(what);
+        return v;
+    }
+    std::string getString(const char* what)
+    {
+        const auto n = get<std::int32_t>(what);
+        if (n < 0 || n > 4096) corrupt(what);
+        std::string s(static_cast<std::size_t>(n), '\0');
+        is_.read(s.data(), n);
+        if (!is_) truncated(what);
+        return s;
+    }
+    template <class T>
+    void getVector(std::vector<T>& v, std::size_t expected, const char* what)
+    {
+        const auto n = get<std::int64_t>(what);
+        if (n < 0 || (expected != std::size_t(-1) && static_cast<std::size_t>(n) != expected)) {
+            throw Error("state file '" + file_ + "': " + what + " has " + std::to_string(n) +
+                        " entries, this solid expects " + std::to_string(expected));
+        }
+        if (n > (std::int64_t(1) << 34)) corrupt(what);
+        v.resize(static_cast<std::size_t>(n));
+        is_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(sizeof(T) * v.size()));
+        if (!is_) truncated(what);
+    }
+    [[noreturn]] void truncated(const char* what)
+    {
+        throw Error("state file '" + file_ + "' is truncated (reading " + what +
+                    "): write it again or restart from an earlier one");
+    }
+    [[noreturn]] void corrupt(const char* what)
+    {
+        throw Error("state file '" + file_ + "' is corrupt (reading " + what + ")");
+    }
+    const std::string& file() const { return file_; }
+
+private:
+    std::istream& is_;
+    std::string file_;
+};
+
+}  // namespace
 
 void ExplicitSolid::saveState(const std::string& fileName) const
 {
     std::ofstream os(fileName, std::ios::binary);
     if (!os) throw Error("cannot write state file '" + fileName + "'");
-    const std::int64_t n = mesh_.nNodes();
-    os.write(kStateMagic, sizeof kStateMagic);
-    os.write(reinterpret_cast<const char*>(&n), sizeof n);
-    os.write(reinterpret_cast<const char*>(&t_), sizeof t_);
-    os.write(reinterpret_cast<const char*>(&dtLast_), sizeof dtLast_);
-    os.write(reinterpret_cast<const char*>(&nSteps_), sizeof nSteps_);
-    for (const auto* field : {&u_, &vHalf_, &fext_}) {
-        os.write(reinterpret_cast<const char*>(field->data()),
-                 static_cast<std::streamsize>(sizeof(Vec3) * field->size()));
+    os.write(kStateTag, sizeof kStateTag);
+    put(os, kStateVersion);
+    put(os, static_cast<std::int64_t>(mesh_->nNodes()));
+    put(os, static_cast<std::int64_t>(mesh_->nElements()));
+    putString(os, toString(options_.formulation));
+    putString(os, material_->name());
+    put(os, t_);
+    put(os, dtLast_);
+    put(os, static_cast<std::int64_t>(nSteps_));
+    put(os, omega2Max_);
+    put(os, static_cast<std::int32_t>(boundAge_));
+    put(os, static_cast<std::int32_t>(boundInterval_));
+    putVector(os, nodeOmega2_);
+    putVector(os, u_);
+    putVector(os, vHalf_);
+    putVector(os, fext_);
+    put(os, maxPenetration_);
+    put(os, static_cast<std::int32_t>(contact_ ? 1 : 0));
+    if (contact_) {
+        contact_->writeState(os);
+        putVector(os, contactPressure_);
     }
+    os.write(kStateTag, sizeof kStateTag);  // end mark: a cut file is found
     if (!os) throw Error("error while writing state file '" + fileName + "'");
 }
 
@@ -498,25 +590,76 @@ void ExplicitSolid::loadState(const std::string& fileName)
 {
     std::ifstream is(fileName, std::ios::binary);
     if (!is) throw Error("cannot open state file '" + fileName + "'");
-    char magic[sizeof kStateMagic] = {};
-    is.read(magic, sizeof magic);
-    if (std::string(magic) != kStateMagic) {
+    Reader r(is, fileName);
+    char tag[sizeof kStateTag] = {};
+    is.read(tag, sizeof tag);
+    if (!is || std::string(tag) != kStateTag) {
         throw Error("'" + fileName + "' is not a smoothedSolid state file");
     }
-    std::int64_t n = 0;
-    is.read(reinterpret_cast<char*>(&n), sizeof n);
-    if (n != mesh_.nNodes()) {
-        throw Error("state file '" + fileName + "' is for a mesh of " + std::to_string(n) +
-                    " nodes, this solid has " + std::to_string(mesh_.nNodes()));
+    const auto version = r.get<std::int32_t>("version");
+    if (version != kStateVersion) {
+        throw Error("state file '" + fileName + "' has format version " + std::to_string(version) +
+                    ", this library reads version " + std::to_string(kStateVersion));
     }
-    is.read(reinterpret_cast<char*>(&t_), sizeof t_);
-    is.read(reinterpret_cast<char*>(&dtLast_), sizeof dtLast_);
-    is.read(reinterpret_cast<char*>(&nSteps_), sizeof nSteps_);
-    for (auto* field : {&u_, &vHalf_, &fext_}) {
-        is.read(reinterpret_cast<char*>(field->data()),
-                static_cast<std::streamsize>(sizeof(Vec3) * field->size()));
+    auto mismatch = [&](const std::string& what, const std::string& file, const std::string& here) {
+        throw Error("state file '" + fileName + "' is for a solid with " + what + " " + file +
+                    ", this solid has " + here);
+    };
+    const auto nodes = r.get<std::int64_t>("node count");
+    const auto elems = r.get<std::int64_t>("element count");
+    if (nodes != mesh_->nNodes()) mismatch("nodes:", std::to_string(nodes), std::to_string(mesh_->nNodes()));
+    if (elems != mesh_->nElements()) {
+        mismatch("elements:", std::to_string(elems), std::to_string(mesh_->nElements()));
     }
-    if (!is) throw Error("state file '" + fileName + "' is truncated");
+    const std::string form = r.getString("formulation");
+    if (form != toString(options_.formulation)) mismatch("formulation", form, toString(options_.formulation));
+    const std::string mat = r.getString("material");
+    if (mat != material_->name()) mismatch("material", mat, material_->name());
+
+    // Read into copies: a failed load leaves this solid as it was
+    const auto t = r.get<double>("time");
+    const auto dtLast = r.get<double>("last step");
+    const auto nSteps = r.get<std::int64_t>("step count");
+    const auto omega2Max = r.get<double>("stable step bound");
+    const auto age = r.get<std::int32_t>("bound age");
+    const auto interval = r.get<std::int32_t>("bound interval");
+    std::vector<double> omega2;
+    std::vector<Vec3> u, v, f;
+    const std::size_t nn = mesh_->nNodes();
+    r.getVector(omega2, nn, "node frequencies");
+    r.getVector(u, nn, "displacement");
+    r.getVector(v, nn, "velocity");
+    r.getVector(f, nn, "external force");
+    const auto maxPen = r.get<double>("penetration");
+    const bool hadContact = r.get<std::int32_t>("contact flag") != 0;
+    if (hadContact != bool(contact_)) {
+        mismatch("contact", hadContact ? "enabled" : "disabled", contact_ ? "enabled" : "disabled");
+    }
+    std::vector<double> pressure;
+    std::unique_ptr<PenaltyContact::State> cstate;
+    if (contact_) {
+        cstate = contact_->readState(is, fileName);
+        r.getVector(pressure, nn, "contact pressure");
+    }
+    char end[sizeof kStateTag] = {};
+    is.read(end, sizeof end);
+    if (!is || std::string(end) != kStateTag) r.truncated("end mark");
+
+    t_ = t;
+    dtLast_ = dtLast;
+    nSteps_ = nSteps;
+    omega2Max_ = omega2Max;
+    boundAge_ = age;
+    boundInterval_ = interval;
+    nodeOmega2_ = std::move(omega2);
+    u_ = std::move(u);
+    vHalf_ = std::move(v);
+    fext_ = std::move(f);
+    maxPenetration_ = maxPen;
+    if (contact_) {
+        contact_->setState(std::move(*cstate));
+        contactPressure_ = std::move(pressure);
+    }
 }
 
 }  // namespace smoothedSolid

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "contact/PenaltyContact.hpp"
+#include "dynamics/StableStep.hpp"
 #include "material/Material.hpp"
 #include "mesh/TetMesh.hpp"
 #include "smoothing/SmoothingDomains.hpp"
@@ -21,7 +22,7 @@ namespace smoothedSolid {
 
 struct SolidOptions {
     Formulation formulation = Formulation::Selective;
-    double safety = 0.8;   // fraction of the critical time step
+    double safety = 0.9;   // fraction of the stable step bound (dynamics/StableStep.hpp)
     double damping = 0.0;  // mass-proportional damping coefficient [1/s]
 };
 
@@ -33,7 +34,7 @@ public:
     ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> material,
                   SolidOptions options = {});
 
-    const TetMesh& mesh() const { return mesh_; }
+    const TetMesh& mesh() const { return *mesh_; }
     const Material& material() const { return *material_; }
     const SolidOptions& options() const { return options_; }
     void setDamping(double c) { options_.damping = c; }
@@ -70,17 +71,32 @@ public:
     const PenaltyContact* contact() const { return contact_.get(); }
     double maxPenetration() const { return maxPenetration_; }
 
-    // Initial velocity field v0(X); only before the first step
+    // Initial velocity field v0(X) and displacement u0(X) (e.g. a
+    // prestretched state); only before the first step
     void setInitialVelocity(const VectorFunction& v0);
+    void setInitialDisplacement(const VectorFunction& u0);
 
     // --- time stepping ----------------------------------------------------
-    // Stable time step: safety * min element height / dilatational wave
-    // speed, times the contact step fraction while contact is near
+    // Stable time step: safety * 2 / omega_max, omega_max from the bound of
+    // dynamics/StableStep.hpp in the current configuration (re-evaluated
+    // during the run, see stableStepInterval()), times the contact step
+    // fraction while contact is near
     double stableTimeStep() const;
-    // One central-difference step of size dt
+    // The same bound, without contact, for any displacement u (evaluated now)
+    double stableTimeStep(const std::vector<Vec3>& u) const;
+    // Sub-steps between two evaluations of the bound: adapts between 1 and
+    // kMaxStableStepInterval, halved when omega_max^2 grew by more than 5 %
+    // since the last evaluation, doubled when it changed by less than 1 %
+    int stableStepInterval() const { return boundInterval_; }
+    static constexpr int kMaxStableStepInterval = 32;
+    // omega_I^2 per node of the last evaluation (its maximum sets the step)
+    const std::vector<double>& nodeOmega2() const { return nodeOmega2_; }
+    // One central-difference step of size dt (positive, finite). Throws,
+    // leaving the state as it was, when the forces stop being finite or a
+    // smoothing domain inverts, naming time, step and node or element.
     void step(double dt);
-    // Advance by dt with as many stable sub-steps as needed (re-chosen after
-    // each sub-step)
+    // Advance by dt (positive, finite) with as many stable sub-steps as
+    // needed (re-chosen after each sub-step); returns their number
     int advance(double dt);
 
     // --- state -------------------------------------------------------------
@@ -104,8 +120,11 @@ public:
     // volumetric part from its 4 node domains)
     void elementStress(std::vector<Mat3>& sigma, std::vector<double>& J) const;
 
-    // Full state (time, step counters, u, v, external force) for an exact
-    // restart; the file names the mesh size it belongs to
+    // Full state for an exact restart: time, step counters, u, v, external
+    // force, the stable step bound and its schedule, the contact candidate
+    // lists. The file carries a format tag and version, node and element
+    // counts, formulation and material; loading a truncated or mismatched
+    // file throws naming the file and the mismatch.
     void saveState(const std::string& fileName) const;
     void loadState(const std::string& fileName);
 
@@ -123,26 +142,26 @@ private:
 
     void accelerationForces(std::vector<Vec3>& f, double dt);  // f_ext - f_int (+ contact) at t_
     void applyConstraints(double dt);
+    // Fe_ and the domain F's of every DomainUse for displacement u
+    void deformationGradients(const std::vector<Vec3>& u) const;
+    void refreshBound();
 
-    TetMesh mesh_;
+    std::shared_ptr<const TetMesh> mesh_;
     std::shared_ptr<const Material> material_;
     SolidOptions options_;
 
-    // Smoothing domains: full stress on 'main_'; with the selective scheme
-    // deviatoric stress on main_ (faces) and volumetric on 'volumetric_'.
-    // Used for energies and stress output; the internal force uses the
-    // element-wise form below (same result, fewer operations).
-    SmoothingDomains main_, volumetric_;
+    // The smoothing (one representation: element gradients and domain
+    // weights) and the domains the formulation integrates over
+    Smoothing smoothing_;
+    std::vector<DomainUse> uses_;
+    // Scratch: element F, per use the domain F and stress, element stress sums
+    mutable std::vector<Mat3> Fe_, Pbar_;
+    mutable std::vector<std::vector<Mat3>> Fd_, Pd_;
 
-    // Element-wise form of the smoothing (linear tets): a domain's smoothed
-    // gradient is the weighted mean of its elements' gradients, so
-    //   F_domain = sum_e w_e F_e,   f_I = sum_e (sum_domains (V_e/4) P_d) g_eI
-    std::vector<Eigen::Matrix<double, 4, 3>> elemGrad_;
-    std::vector<double> quarterVolume_;              // V_e/4
-    std::vector<std::array<double, 2>> faceWeight_;  // owner, neighbour
-    std::vector<double> nodeWeight_;                 // per mesh.nodeElements() entry
-    std::vector<std::uint8_t> nodeLocal_;            // per mesh.nodeElements() entry
-    mutable std::vector<Mat3> Fe_, Pbar_, Pf_, Pn_;  // element F; stresses per element, face, node
+    StableStepBound bound_;
+    std::vector<double> nodeOmega2_;
+    double omega2Max_ = 0;
+    int boundAge_ = 0, boundInterval_ = 1;
 
     std::vector<double> mass_;
     std::vector<Vec3> u_, vHalf_, fext_;

@@ -1,5 +1,6 @@
 #include "material/Material.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace smoothedSolid {
@@ -86,6 +87,50 @@ Mat3 MooneyRivlin::stressVolumetric(const Mat3& F) const
     return kappa_ * (J - 1.0) * J * F.inverse().transpose();
 }
 
+// Tangent bounds (see Material.hpp). Isochoric part (Holzapfel 2000,
+// Sect. 6.6, in Kirchhoff form), with bbar = J^(-2/3) F F^T (eigenvalues
+// beta_i), the fictitious Kirchhoff stress taubar and elasticity cbar:
+//   c_iso = P:cbar:P + (2/3) tr(taubar) P - (2/3)(tau_iso (x) I + I (x) tau_iso),
+//   P = II - (1/3) I (x) I,  tau_iso = dev taubar,
+//   taubar = 2 c10 bbar + 2 c01 (I1bar bbar - bbar^2),
+//   tr taubar = 2 c10 I1bar + 4 c01 I2bar,
+//   cbar = 4 c01 (bbar (x) bbar - bbar (.) bbar).
+// With X = dev sym G (|X| <= |G|):
+//   X:cbar:X = 4 c01 ((X:dev bbar)^2 - |bbar^1/2 X bbar^1/2|^2)
+//            <= 4 c01 (|dev bbar|^2 - beta_min^2) |X|^2,
+//   (4/3)|tau_iso:G||tr G| <= (2/3)|tau_iso|_F (|G|^2 + (tr G)^2),
+//   geometric tr(G tau_iso G^T)/J <= max(0, max eig tau_iso) |G|^2 / J.
+// Exact at F = I: shear 2 mu = 4 (c10 + c01), bulk 0.
+Material::TangentBound MooneyRivlin::tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const
+{
+    const double J = F.determinant();
+    const Eigen::Array3d b = std::pow(J, -2.0 / 3.0) * lambda2.array();
+    const double I1 = b.sum();
+    const double I2 = b[0] * b[1] + b[1] * b[2] + b[2] * b[0];
+    const Eigen::Array3d tau = 2.0 * c10_ * b + 2.0 * c01_ * (I1 * b - b.square());
+    const Eigen::Array3d tauIso = tau - tau.sum() / 3.0;
+    const Eigen::Array3d devB = b - I1 / 3.0;
+    const double a = (2.0 / 3.0) * (2.0 * c10_ * I1 + 4.0 * c01_ * I2) +
+                     4.0 * c01_ * (devB.square().sum() - b.minCoeff() * b.minCoeff());
+    const double tauF = std::sqrt(tauIso.square().sum());
+    TangentBound t;
+    t.shear = (std::max(0.0, a) + (2.0 / 3.0) * tauF + std::max(0.0, tauIso.maxCoeff())) / J;
+    t.bulk = (2.0 / 3.0) * tauF / J;
+    return t;
+}
+
+// Volumetric part U = kappa/2 (J - 1)^2, p = U'(J) = kappa (J - 1):
+// c/J = (p + J U'') I (x) I - 2 p II, geometric term p |G|^2:
+//   Q = kappa (2J - 1)(tr G)^2 - 2 p |sym G|^2 + p |G|^2 <= |p| |G|^2 + kappa (2J - 1)(tr G)^2
+Material::TangentBound MooneyRivlin::tangentBoundVolumetric(const Mat3& F, const Vec3&) const
+{
+    const double J = F.determinant();
+    TangentBound t;
+    t.shear = kappa_ * std::abs(J - 1.0);
+    t.bulk = std::max(0.0, kappa_ * (2.0 * J - 1.0));
+    return t;
+}
+
 NeoHookean::NeoHookean(double mu, double K, double rho) : MooneyRivlin(0.5 * mu, 0.0, K, rho)
 {
 }
@@ -126,6 +171,35 @@ Mat3 StVenantKirchhoff::stressDeviatoric(const Mat3& F) const
 {
     const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
     return F * (2.0 * mu_ * E);
+}
+
+// St Venant-Kirchhoff: c = lambda b (x) b + 2 mu b (.) b (push-forward of
+// the constant material tensor), b = F F^T (eigenvalues beta_i = lambda2):
+//   2 mu G:(b (.) b):G <= 2 mu beta_max^2 |G|^2,
+//   lambda (b:G)^2 = lambda (tr G + (b - I):G)^2
+//                  <= lambda ((1 + e)(tr G)^2 + (e + e^2)|G|^2),  e = |b - I|_F;
+// geometric terms with tau = F S F^T: mu beta_i (beta_i - 1) (mu part),
+// lambda tr(E) beta_i (lambda part). Exact at F = I (2 mu; lambda).
+Material::TangentBound StVenantKirchhoff::tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const
+{
+    const double J = F.determinant();
+    const Eigen::Array3d b = lambda2.array();
+    TangentBound t;
+    t.shear = (2.0 * mu_ * b.maxCoeff() * b.maxCoeff() +
+               std::max(0.0, (mu_ * b * (b - 1.0)).maxCoeff())) / J;
+    return t;
+}
+
+Material::TangentBound StVenantKirchhoff::tangentBoundVolumetric(const Mat3& F, const Vec3& lambda2) const
+{
+    const double J = F.determinant();
+    const Eigen::Array3d b = lambda2.array();
+    const double e = std::sqrt((b - 1.0).square().sum());
+    const double trE = 0.5 * (b.sum() - 3.0);
+    TangentBound t;
+    t.shear = (lambda_ * (e + e * e) + std::max(0.0, (lambda_ * trE * b).maxCoeff())) / J;
+    t.bulk = lambda_ * (1.0 + e) / J;
+    return t;
 }
 
 Mat3 StVenantKirchhoff::stressVolumetric(const Mat3& F) const

@@ -38,6 +38,23 @@ public:
     virtual double bulkModulus() const = 0;
     double waveModulus() const { return bulkModulus() + 4.0 * shearModulus() / 3.0; }
 
+    // Bounds for the stable time step (dynamics/StableStep.hpp). With the
+    // spatial gradient G = grad_x du, dF = G F, the second variation of W
+    // per unit current volume is
+    //   Q(G) = (1/J) dF : d2W/dFdF : dF = G : (c/J) : G + tr(G sigma G^T)
+    // (spatial elasticity c of the Kirchhoff stress plus the geometric
+    // stress term; Holzapfel, Nonlinear Solid Mechanics, 2000, Sect. 6.6).
+    // A bound gives shear and bulk coefficients with
+    //   Q(G) <= shear |G|_F^2 + bulk (tr G)^2   for every G.
+    // At F = I an isotropic material gives shear = 2 mu, bulk = K - 2 mu/3
+    // (the deviatoric part: 2 mu, 0; the volumetric part: 0, K).
+    // lambda2: the eigenvalues of C = F^T F, ascending (computed by the caller).
+    struct TangentBound {
+        double shear = 0, bulk = 0;
+    };
+    virtual TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const = 0;
+    virtual TangentBound tangentBoundVolumetric(const Mat3& F, const Vec3& lambda2) const = 0;
+
 protected:
     explicit Material(double rho);
     double rho_;
@@ -59,6 +76,8 @@ public:
     Mat3 stressVolumetric(const Mat3& F) const override;
     double shearModulus() const override { return 2.0 * (c10_ + c01_); }
     double bulkModulus() const override { return kappa_; }
+    TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const override;
+    TangentBound tangentBoundVolumetric(const Mat3& F, const Vec3& lambda2) const override;
 
 protected:
     double c10_, c01_, kappa_;
@@ -86,6 +105,8 @@ public:
     Mat3 stressVolumetric(const Mat3& F) const override;
     double shearModulus() const override { return mu_; }
     double bulkModulus() const override { return lambda_ + 2.0 * mu_ / 3.0; }
+    TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const override;
+    TangentBound tangentBoundVolumetric(const Mat3& F, const Vec3& lambda2) const override;
 
 private:
     double mu_, lambda_;

@@ -11,10 +11,22 @@
 //                        elements sharing f;
 //   element (FEM-T4):    the element itself.
 // This is what is built here; the patch test checks it.
+//
+// One representation: class Smoothing holds that element-wise data (element
+// gradients, quarter volumes, the weights of each element in each face and
+// node domain). The internal force, the strain energy, the stress output
+// and the stable time step bound of ExplicitSolid all take their domain
+// deformation gradients from it (F_domain = sum_e w_e F_e). The merged,
+// per-node view of a domain (SmoothingDomains below: its nodes and smoothed
+// gradients b_I) is built from the same weights; the stable step bound uses
+// the norms of its gradients and the patch test checks both views agree.
 #pragma once
 
 #include "mesh/TetMesh.hpp"
 
+#include <array>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace smoothedSolid {
@@ -42,6 +54,55 @@ struct SmoothingDomains {
         for (int k = start[d]; k < start[d + 1]; ++k) F += u[node[k]] * grad[k].transpose();
         return F;
     }
+};
+
+// Which smoothing domains a formulation integrates over, and which part of
+// the stress each carries (selective: deviatoric on faces, volumetric on
+// nodes, Sect. 3.2)
+enum class DomainKind { Element, Face, Node };
+enum class StressPart { Full, Deviatoric, Volumetric };
+struct DomainUse {
+    DomainKind kind;
+    StressPart part;
+};
+std::vector<DomainUse> domainUses(Formulation f);
+
+class Smoothing {
+public:
+    using Gradients = Eigen::Matrix<double, 4, 3>;
+
+    explicit Smoothing(std::shared_ptr<const TetMesh> mesh);
+    // Non-owning: the mesh must outlive this object
+    explicit Smoothing(const TetMesh& mesh);
+
+    const TetMesh& mesh() const { return *mesh_; }
+    int size(DomainKind kind) const;
+    double volume(DomainKind kind, int d) const;
+
+    // Element deformation gradients F_e = I + sum_a u_a (x) g_ea (parallel)
+    void elementF(const std::vector<Vec3>& u, std::vector<Mat3>& Fe) const;
+    // Smoothed F of domain d: weighted mean of the F_e of its elements (Eq. 23)
+    Mat3 domainF(DomainKind kind, int d, const std::vector<Mat3>& Fe) const;
+    // All domains of a kind (parallel)
+    void domainF(DomainKind kind, const std::vector<Mat3>& Fe, std::vector<Mat3>& Fd) const;
+
+    const Gradients& gradients(int e) const { return elemGrad_[e]; }
+    double quarterVolume(int e) const { return quarterVolume_[e]; }
+
+    // f_I = sum_{e around I} Pbar_e g_eI (gather form, parallel)
+    void gatherForce(const std::vector<Mat3>& Pbar, std::vector<Vec3>& f) const;
+
+    // The merged per-node view of the domains of a kind
+    SmoothingDomains merged(DomainKind kind) const;
+
+private:
+    std::shared_ptr<const TetMesh> mesh_;
+    std::vector<Gradients> elemGrad_;
+    std::vector<double> quarterVolume_;              // V_e/4
+    std::vector<std::array<double, 2>> faceWeight_;  // owner, neighbour
+    std::vector<double> nodeWeight_;                 // per mesh.nodeElements() entry
+    std::vector<std::uint8_t> nodeLocal_;            // per mesh.nodeElements() entry
+    std::vector<double> faceVolume_, nodeVolume_;
 };
 
 SmoothingDomains elementDomains(const TetMesh& mesh);

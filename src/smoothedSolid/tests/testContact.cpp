@@ -371,9 +371,10 @@ TEST(Contact, CandidateListsMatchFreshSearch)
         }
         std::vector<Vec3> fKept(mesh.nNodes(), Vec3::Zero()), fFresh = fKept;
         std::vector<double> p;
-        const double penKept = kept.addForces(mesh, x, v, dt, fKept, p);
+        const std::vector<double> w2(mesh.nNodes(), 4.0 * M / (kRho * h * h));
+        const double penKept = kept.addForces(mesh, x, v, dt, w2, fKept, p);
         const double penFresh =
-            PenaltyContact(mesh, h, M, kRho, mass, {}).addForces(mesh, x, v, dt, fFresh, p);
+            PenaltyContact(mesh, h, M, kRho, mass, {}).addForces(mesh, x, v, dt, w2, fFresh, p);
         EXPECT_EQ(penKept, penFresh);
         for (int i = 0; i < mesh.nNodes(); ++i) worst = std::max(worst, (fKept[i] - fFresh[i]).norm());
         ++evaluations;
