@@ -189,7 +189,8 @@ TEST(Material, MooneyRivlinClosedFormPrincipalStresses)
             const PrincipalPK1 ref = analyticPK1(c, l);
             const Mat3 D = l.asDiagonal();
             const Mat3 refDev = ref.dev.asDiagonal(), refVol = ref.vol.asDiagonal();
-            const double scale = std::max({maxAbs(refDev + refVol), maxAbs(refDev), maxAbs(refVol)});
+            const double scale =
+                std::max({maxAbs(refDev + refVol), maxAbs(refDev), maxAbs(refVol)});
 
             const Mat3 P = m->firstPK(D);
             const double errDev = maxAbs(m->stressDeviatoric(D) - refDev) / scale;
