@@ -19,6 +19,15 @@ int numThreads()
 #endif
 }
 
+bool builtWithOpenMP()
+{
+#ifdef _OPENMP
+    return true;
+#else
+    return false;
+#endif
+}
+
 void setNumThreads(int n)
 {
     if (n < 1) throw Error("setNumThreads: need at least one thread, got " + std::to_string(n));

@@ -9,4 +9,8 @@ namespace smoothedSolid {
 int numThreads();
 void setNumThreads(int n);  // n >= 1
 
+// Whether the library was compiled with OpenMP; if not, numThreads() is
+// always 1 and setNumThreads() only checks its argument
+bool builtWithOpenMP();
+
 }  // namespace smoothedSolid

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """DFG benchmark 2D-1 (Schaefer & Turek 1996): compare c_D, Delta p with the
-references of ../shared/references.md; c_L is reported."""
+references of docs/references.md; c_L is reported."""
 import os
 import sys
 sys.path.insert(0, os.path.join(os.environ["ISFEM_PROJECT_DIR"], "tutorials"))

@@ -89,9 +89,24 @@ TEST(Dynamics, CantileverEnergyConservedOverTenPeriods)
 }
 
 // The threaded internal force is in gather form (each entry summed by one
-// thread in a fixed order): the result must not depend on the thread count
+// thread in a fixed order): the result must not depend on the thread count,
+// bitwise. The build states whether the library must be threaded
+// (SMOOTHEDSOLID_EXPECT_OPENMP from CMake), so a library silently built
+// without OpenMP cannot pass by comparing one thread with one thread.
 TEST(Dynamics, InternalForceIndependentOfThreadCount)
 {
+#if SMOOTHEDSOLID_EXPECT_OPENMP
+    const bool threaded = true;
+    std::printf("built with SMOOTHEDSOLID_OPENMP=ON: builtWithOpenMP() = %s (expected true)\n",
+                builtWithOpenMP() ? "true" : "false");
+    ASSERT_TRUE(builtWithOpenMP()) << "SMOOTHEDSOLID_OPENMP is ON but the library has no OpenMP";
+#else
+    const bool threaded = false;
+    std::printf("built with SMOOTHEDSOLID_OPENMP=OFF: this build is single-threaded, only the "
+                "1-thread internal force is checked; builtWithOpenMP() = %s (expected false)\n",
+                builtWithOpenMP() ? "true" : "false");
+    ASSERT_FALSE(builtWithOpenMP());
+#endif
     const int threads = numThreads();
     const TetMesh mesh = TetMesh::fromGmsh(test::boxMsh("threads", 1.0, 0.5, 0.4, 0.12));
     std::vector<Vec3> u(mesh.nNodes());
@@ -99,21 +114,35 @@ TEST(Dynamics, InternalForceIndependentOfThreadCount)
         const Vec3& X = mesh.coordinates()[i];
         u[i] = 0.05 * Vec3(std::sin(3 * X.y()), X.x() * X.z(), std::cos(2 * X.x()) - 1);
     }
-    double worst = 0;
+    double worst = 0, size = 0;
+    int threadsUsed = 0;
     for (Formulation form : {Formulation::FEM_T4, Formulation::NS_FEM, Formulation::FS_FEM,
                              Formulation::Selective}) {
         ExplicitSolid solid(mesh, std::make_shared<MooneyRivlin>(1000.0, 200.0, 5e4, 1000.0),
                             {form, 0.8, 0.0});
         setNumThreads(1);
+        EXPECT_EQ(numThreads(), 1);
         const std::vector<Vec3> f1 = solid.internalForce(u);
+        for (const Vec3& f : f1) size = std::max(size, f.norm());
+        if (!threaded) continue;
+        // overrides OMP_NUM_THREADS=1, which ctest sets
         setNumThreads(2);
+        threadsUsed = numThreads();
+        EXPECT_EQ(threadsUsed, 2);
         const std::vector<Vec3> f2 = solid.internalForce(u);
         for (int i = 0; i < mesh.nNodes(); ++i) worst = std::max(worst, (f1[i] - f2[i]).norm());
     }
     setNumThreads(threads);
-    std::printf("internal force on 1 and 2 threads, %d nodes, 4 formulations: largest "
-                "difference %.3e (must be 0)\n",
-                mesh.nNodes(), worst);
+    EXPECT_GT(size, 0.0);
+    if (threaded) {
+        std::printf("internal force on 1 and %d threads, %d nodes, 4 formulations: largest "
+                    "difference %.3e (max |f| %.3e; must be 0)\n",
+                    threadsUsed, mesh.nNodes(), worst, size);
+    } else {
+        std::printf("internal force on 1 thread, %d nodes, 4 formulations: max |f| %.3e "
+                    "(single-threaded build, no 2-thread comparison)\n",
+                    mesh.nNodes(), size);
+    }
     EXPECT_EQ(worst, 0.0);
     EXPECT_THROW(setNumThreads(0), Error);
 }

@@ -1,8 +1,11 @@
-// Stresses against central finite differences of W, and objectivity
+// Stresses against central finite differences of W and against closed-form
+// homogeneous large-strain stresses, and objectivity
 #include "material/Material.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <random>
@@ -101,5 +104,174 @@ TEST(Material, SmallStrainModuli)
                     m->shearModulus(), K, m->bulkModulus());
         EXPECT_NEAR(mu / m->shearModulus(), 1.0, 1e-5);
         EXPECT_NEAR(K / m->bulkModulus(), 1.0, 1e-5);
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Homogeneous large strain against stresses derived by hand.
+//
+// For F = diag(l1, l2, l3) the first PK stress is diagonal with P_i = dW/dl_i.
+// With J = l1 l2 l3, dJ/dl_i = J/l_i, I1 = sum l_i^2 and
+// I2 = ((tr C)^2 - tr(C^2))/2 = l1^2 l2^2 + l2^2 l3^2 + l3^2 l1^2,
+// dI1/dl_i = 2 l_i, dI2/dl_i = 2 l_i (l_j^2 + l_k^2) = 2 l_i (I1 - l_i^2):
+//   c10 term:   c10 J^(-2/3) (2 l_i - (2/3) I1 / l_i)
+//   c01 term:   c01 J^(-4/3) (2 l_i (I1 - l_i^2) - (4/3) I2 / l_i)
+//   kappa term: kappa (J - 1) J / l_i
+// Off-diagonal P_ij are zero. For F = R diag(l) Q^T (R, Q rotations) an
+// isotropic material gives P = R diag(P_i) Q^T.
+
+namespace {
+
+struct MooneyRivlinConstants {
+    double c10, c01, kappa;
+};
+
+struct PrincipalPK1 {
+    Vec3 dev, vol;
+};
+
+// misprintedI2: the sign error I2 = ((tr C)^2 + tr(C^2))/2, whose derivative
+// is dI2/dl_i = 2 l_i (I1 + l_i^2); a negative control only
+PrincipalPK1 analyticPK1(const MooneyRivlinConstants& m, const Vec3& l, bool misprintedI2 = false)
+{
+    const double J = l[0] * l[1] * l[2];
+    const double I1 = l.squaredNorm();
+    const double trC2 = std::pow(l[0], 4) + std::pow(l[1], 4) + std::pow(l[2], 4);
+    const double s = misprintedI2 ? 1.0 : -1.0;
+    const double I2 = 0.5 * (I1 * I1 + s * trC2);
+    PrincipalPK1 P;
+    for (int i = 0; i < 3; ++i) {
+        const double dI2 = 2.0 * l[i] * (I1 + s * l[i] * l[i]);
+        P.dev[i] = m.c10 * std::pow(J, -2.0 / 3.0) * (2.0 * l[i] - (2.0 / 3.0) * I1 / l[i]) +
+                   m.c01 * std::pow(J, -4.0 / 3.0) * (dI2 - (4.0 / 3.0) * I2 / l[i]);
+        P.vol[i] = m.kappa * (J - 1.0) * J / l[i];
+    }
+    return P;
+}
+
+double maxAbs(const Mat3& A) { return A.cwiseAbs().maxCoeff(); }
+
+struct ClosedFormCase {
+    const char* name;
+    Vec3 stretch;
+};
+
+std::vector<ClosedFormCase> closedFormCases()
+{
+    return {{"uniaxial, lateral 0.85", Vec3(1.5, 0.85, 0.85)},
+            {"uniaxial, isochoric", Vec3(1.5, 1 / std::sqrt(1.5), 1 / std::sqrt(1.5))},
+            {"equibiaxial, isochoric", Vec3(1.5, 1.5, 1 / 2.25)},
+            {"equibiaxial, l3 0.5", Vec3(1.5, 1.5, 0.5)},
+            {"compression, all three", Vec3(0.7, 0.9, 0.8)}};
+}
+
+struct NamedMooneyRivlin {
+    std::shared_ptr<Material> material;
+    MooneyRivlinConstants constants;
+};
+
+std::vector<NamedMooneyRivlin> mooneyRivlinFamily()
+{
+    // neo-Hookean(mu, K) is Mooney-Rivlin with c10 = mu/2, c01 = 0, kappa = K
+    return {{std::make_shared<MooneyRivlin>(1000.0, 200.0, 50000.0, 1000.0), {1000, 200, 50000}},
+            {std::make_shared<NeoHookean>(2.0e5, 1.0e6, 1000.0), {1.0e5, 0.0, 1.0e6}}};
+}
+
+}  // namespace
+
+TEST(Material, MooneyRivlinClosedFormPrincipalStresses)
+{
+    const double tol = 1e-10;  // relative to the largest analytic stress component
+    const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+    const Mat3 Q = Eigen::AngleAxisd(-1.1, Vec3(-2, 0.5, 1).normalized()).toRotationMatrix();
+    for (const auto& [m, c] : mooneyRivlinFamily()) {
+        for (const auto& [name, l] : closedFormCases()) {
+            const PrincipalPK1 ref = analyticPK1(c, l);
+            const Mat3 D = l.asDiagonal();
+            const Mat3 refDev = ref.dev.asDiagonal(), refVol = ref.vol.asDiagonal();
+            const double scale =
+                std::max({maxAbs(refDev + refVol), maxAbs(refDev), maxAbs(refVol)});
+
+            const Mat3 P = m->firstPK(D);
+            const double errDev = maxAbs(m->stressDeviatoric(D) - refDev) / scale;
+            const double errVol = maxAbs(m->stressVolumetric(D) - refVol) / scale;
+            const double errTotal = maxAbs(P - refDev - refVol) / scale;
+            // Rotated from the left (P = R P_diag) and from both sides
+            const double errLeft = maxAbs(m->firstPK(R * D) - R * (refDev + refVol)) / scale;
+            const double errBoth =
+                maxAbs(m->firstPK(R * D * Q.transpose()) - R * (refDev + refVol) * Q.transpose()) /
+                scale;
+
+            std::printf("%-13s %-24s F = diag(%.4f %.4f %.4f)\n"
+                        "    P_i code     %+.10e %+.10e %+.10e\n"
+                        "    P_i analytic %+.10e %+.10e %+.10e\n"
+                        "    relative error: dev %.1e, vol %.1e, total %.1e, R F %.1e, "
+                        "R F Q^T %.1e (tolerance %.0e)\n",
+                        m->name().c_str(), name, l[0], l[1], l[2], P(0, 0), P(1, 1), P(2, 2),
+                        ref.dev[0] + ref.vol[0], ref.dev[1] + ref.vol[1], ref.dev[2] + ref.vol[2],
+                        errDev, errVol, errTotal, errLeft, errBoth, tol);
+            EXPECT_LT(errDev, tol) << m->name() << ", " << name;
+            EXPECT_LT(errVol, tol) << m->name() << ", " << name;
+            EXPECT_LT(errTotal, tol) << m->name() << ", " << name;
+            EXPECT_LT(errLeft, tol) << m->name() << ", " << name;
+            EXPECT_LT(errBoth, tol) << m->name() << ", " << name;
+        }
+    }
+}
+
+// Independent check of the hand derivation against the textbook incompressible
+// Mooney-Rivlin, Cauchy sigma = 2 c10 B - 2 c01 B^-1 - p I (e.g. Holzapfel,
+// Nonlinear Solid Mechanics, 2000, Ch. 6). At J = 1 the decoupled form's
+// deviatoric stress differs from it only by a pressure, which drops out of
+// principal stress differences:
+//   uniaxial l, 1/sqrt(l):  sigma_1 - sigma_2 = 2 (l^2 - 1/l)   (c10 + c01/l)
+//   equibiaxial l, l, 1/l^2: sigma_1 - sigma_3 = 2 (l^2 - 1/l^4) (c10 + c01 l^2)
+TEST(Material, MooneyRivlinIncompressibleTextbookDifferences)
+{
+    const double tol = 1e-10;
+    for (const auto& [m, c] : mooneyRivlinFamily()) {
+        for (const double l : {1.5, 0.6}) {
+            const Mat3 Fu = Vec3(l, 1 / std::sqrt(l), 1 / std::sqrt(l)).asDiagonal();
+            const Mat3 Fb = Vec3(l, l, 1 / (l * l)).asDiagonal();
+            const Mat3 su = m->cauchy(Fu), sb = m->cauchy(Fb);
+            const double uniaxial = su(0, 0) - su(1, 1);
+            const double equibiaxial = sb(0, 0) - sb(2, 2);
+            const double uniaxialRef = 2 * (l * l - 1 / l) * (c.c10 + c.c01 / l);
+            const double equibiaxialRef = 2 * (l * l - std::pow(l, -4)) * (c.c10 + c.c01 * l * l);
+            const double errU = std::abs(uniaxial / uniaxialRef - 1);
+            const double errB = std::abs(equibiaxial / equibiaxialRef - 1);
+            std::printf("%-13s l = %.2f uniaxial sigma1-sigma2 %.10e (textbook %.10e, rel %.1e); "
+                        "equibiaxial sigma1-sigma3 %.10e (textbook %.10e, rel %.1e); "
+                        "tolerance %.0e\n",
+                        m->name().c_str(), l, uniaxial, uniaxialRef, errU, equibiaxial,
+                        equibiaxialRef, errB, tol);
+            EXPECT_LT(errU, tol) << m->name() << ", l = " << l;
+            EXPECT_LT(errB, tol) << m->name() << ", l = " << l;
+        }
+    }
+}
+
+// Negative control: the paper's misprinted I2 = ((tr C)^2 + tr(C^2))/2 gives
+// stresses far outside the tolerance of the closed-form test, so that test
+// does distinguish the corrected invariant from the misprint
+TEST(Material, MisprintedSecondInvariantIsDetected)
+{
+    const double tol = 1e-10;
+    const auto family = mooneyRivlinFamily();
+    const auto& [m, c] = family.front();
+    ASSERT_GT(c.c01, 0.0);  // the misprint only enters through the c01 term
+    for (const auto& [name, l] : closedFormCases()) {
+        const PrincipalPK1 good = analyticPK1(c, l);
+        const PrincipalPK1 bad = analyticPK1(c, l, true);
+        const Mat3 P = m->stressDeviatoric(l.asDiagonal());
+        const double scale = std::max((good.dev + good.vol).cwiseAbs().maxCoeff(),
+                                      good.dev.cwiseAbs().maxCoeff());
+        const double errGood = (P.diagonal() - good.dev).cwiseAbs().maxCoeff() / scale;
+        const double errBad = (P.diagonal() - bad.dev).cwiseAbs().maxCoeff() / scale;
+        std::printf("%-24s deviatoric P_1: code %+.10e, corrected I2 %+.10e (rel %.1e), "
+                    "misprinted I2 %+.10e (rel %.1e, must exceed %.0e)\n",
+                    name, P(0, 0), good.dev[0], errGood, bad.dev[0], errBad, tol);
+        EXPECT_LT(errGood, tol) << name;
+        EXPECT_GT(errBad, tol) << name;
     }
 }

@@ -13,7 +13,9 @@ std::string boxMsh(const std::string& name, double Lx, double Ly, double Lz, dou
 // A surface-only (triangle) mesh of a square: a .msh without tetrahedra
 std::string surfaceOnlyMsh(const std::string& name);
 
-// Temporary directory of the tests
+// Temporary directory of this test process: <system temp>/smoothedSolidTests-
+// <pid>-<random>, created on the first call, the same for every later call,
+// removed with its files at exit unless SMOOTHEDSOLID_KEEP_TEST_FILES is set
 std::string tempDir();
 
 }  // namespace smoothedSolid::test

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Cook's membrane (references.md): tip deflection of the selective FS/NS-FEM
+"""Cook's membrane (docs/references.md): tip deflection of the selective FS/NS-FEM
 within 3% of the converged 6.89 mm; FEM-T4 on the same mesh below 75% of it
 (volumetric locking, which the selective scheme removes)."""
 import os

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Turek & Hron CSM1 (references.md): static tip displacement of the flag
+"""Turek & Hron CSM1 (docs/references.md): static tip displacement of the flag
 under gravity: u_y(A) within 2% of -66.10 mm, u_x(A) within 3% of -7.187 mm."""
 import os
 import sys

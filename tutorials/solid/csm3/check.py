@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Turek & Hron CSM3 (references.md): undamped oscillation of the flag under
+"""Turek & Hron CSM3 (docs/references.md): undamped oscillation of the flag under
 gravity. Over the last full period of u_y(A): mean and amplitude
 ((max+min)/2, (max-min)/2) and frequency. Amplitude within 3%, frequency
 within 2% of the reference; means reported."""
