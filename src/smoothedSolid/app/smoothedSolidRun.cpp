@@ -12,7 +12,9 @@ int main(int argc, char* argv[])
     }
     try {
         smoothedSolid::SolidRun run(argv[1]);
-        run.run(std::cout);
+        const long steps = run.run(std::cout);
+        std::cout << "smoothedSolidRun: t = " << run.solid().time() << " after " << steps
+                  << " sub-steps\n";
         for (std::size_t i = 0; i < run.probeNames().size(); ++i) {
             const auto u = run.probeDisplacement(i);
             std::cout << "probe " << run.probeNames()[i] << " displacement " << u.x() << " "

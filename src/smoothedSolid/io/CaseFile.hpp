@@ -21,11 +21,17 @@
 //                                             penalty contact between parts
 //                                             (and within them); see
 //                                             contact/PenaltyContact.hpp
-//   endTime       T
+//   endTime       T                           the run advances with sub-steps
+//                                             at the solid's current stable
+//                                             step, ending exactly at each
+//                                             write and probe time and at T
 //   writeInterval dt                          VTU output interval
 //   output        results                     output directory
-//   probe         A 0.6 0.2 0                 node nearest to the point;
+//   probe         A 0.6 0.2 0                 displacement at the point
+//                                             (interpolated in its element);
 //                                             history in <output>/probes.dat
+//   probeInterval dt                          probe sampling interval
+//                                             (default writeInterval/50)
 //   steadyTolerance 1e-6                      stop when the probes' relative
 //                                             change per writeInterval is below
 #pragma once

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 
 namespace smoothedSolid {
 
@@ -191,6 +192,14 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
     if (!(endTime_ > 0) || !(writeInterval_ > 0)) {
         throw Error(case_.fileName() + ": endTime and writeInterval must be positive");
     }
+    // Probe sampling: 50 samples per write interval unless given (for
+    // CSM3, 1 ms: about 900 samples per period of the flag)
+    probeInterval_ = writeInterval_ / 50;
+    if (const auto* e = case_.find("probeInterval", true)) {
+        if (e->args.size() != 1) case_.fail(*e, "expected one time interval");
+        probeInterval_ = case_.number(*e, 0);
+        if (!(probeInterval_ > 0)) case_.fail(*e, "the probe interval must be positive");
+    }
     if (const auto* e = case_.find("steadyTolerance", true)) steadyTol_ = case_.number(*e, 0);
     outputDir_ = "results";
     if (const auto* e = case_.find("output", true)) outputDir_ = e->args.at(0);
@@ -233,10 +242,9 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
     probeFile_ << "\n" << std::setprecision(10);
 }
 
-void SolidRun::applyLoads()
+void SolidRun::applyLoads(double t)
 {
     ExplicitSolid& s = *solid_;
-    const double t = s.time();
     auto& f = s.externalForce();
     std::fill(f.begin(), f.end(), Vec3::Zero());
     for (const Traction& tr : tractions_) {
@@ -246,8 +254,28 @@ void SolidRun::applyLoads()
     if (gravityRamp_) s.setBodyForce(gravityRamp_(t) * gravity_);
 }
 
+void SolidRun::noteSubStep(double h)
+{
+    current_.minSubStep = std::min(current_.minSubStep, h);
+    current_.maxSubStep = std::max(current_.maxSubStep, h);
+}
+
+void SolidRun::subStepStarted(double t)
+{
+    if (stepOpen_) noteSubStep(t - stepStart_);
+    stepStart_ = t;
+    stepOpen_ = true;
+}
+
+void SolidRun::chunkEnded()
+{
+    if (stepOpen_) noteSubStep(solid_->time() - stepStart_);
+    stepOpen_ = false;
+}
+
 void SolidRun::writeProbes()
 {
+    lastProbeTime_ = solid_->time();
     probeFile_ << solid_->time();
     for (std::size_t i = 0; i < probes_.size(); ++i) {
         const Vec3 u = probeDisplacement(i);
@@ -267,48 +295,82 @@ Vec3 SolidRun::probeDisplacement(std::size_t i) const
 long SolidRun::run(std::ostream& log)
 {
     ExplicitSolid& s = *solid_;
-    const double dt = s.stableTimeStep();
+    s.setLoadUpdate([this](double t) {
+        applyLoads(t);
+        subStepStarted(t);
+    });
+    const double dt0 = s.stableTimeStep();
     log << "smoothedSolidRun: " << s.mesh().nNodes() << " nodes, " << s.mesh().nElements()
         << " tets, " << toString(s.options().formulation) << ", " << s.material().name()
-        << ", dt = " << dt << " s" << std::endl;
-    vtu_->write(s, {{"contactPressure", s.contactPressure().empty()
-                                            ? std::vector<double>(s.mesh().nNodes(), 0.0)
-                                            : s.contactPressure()}});
+        << ", stable step dt = " << dt0 << " s, probes every " << probeInterval_ << " s"
+        << std::endl;
+    if (probeInterval_ < dt0) {
+        log << "note: probeInterval " << probeInterval_ << " s is below the stable step: "
+            << "it limits the sub-steps" << std::endl;
+    }
+    auto writeVtu = [&] {
+        std::vector<double> cp = s.contactPressure();
+        cp.resize(s.mesh().nNodes(), 0.0);
+        vtu_->write(s, {{"contactPressure", cp}});
+    };
+    writeVtu();
     writeProbes();
+
+    // Events at integer multiples of the intervals (no drift); events closer
+    // than eps are one
+    const double eps = 1e-9 * std::min(writeInterval_, probeInterval_);
+    const long steps0 = s.steps();
+    long nWrite = 1, nProbe = 1;
     std::vector<Vec3> last(probes_.size(), Vec3::Zero());
-    double nextWrite = writeInterval_;
-    long steps = 0;
-    while (s.time() < endTime_ - 1e-12 * endTime_) {
-        applyLoads();
-        s.step(std::min(dt, endTime_ - s.time()));
-        ++steps;
-        if (steps % 20 == 0) writeProbes();
-        if (s.time() >= nextWrite - 1e-12 * endTime_) {
-            nextWrite += writeInterval_;
-            std::vector<double> cp = s.contactPressure();
-            cp.resize(s.mesh().nNodes(), 0.0);
-            vtu_->write(s, {{"contactPressure", cp}});
-            log << "t = " << s.time() << "  steps " << steps
-                << "  kinetic energy " << s.kineticEnergy();
-            double change = 0, size = 0;
-            for (std::size_t i = 0; i < probes_.size(); ++i) {
-                const Vec3 u = probeDisplacement(i);
-                log << "  " << probeNames_[i] << " (" << u.x() << ", " << u.y() << ", " << u.z()
-                    << ")";
-                change = std::max(change, (u - last[i]).norm());
-                size = std::max(size, u.norm());
-                last[i] = u;
-            }
-            log << std::endl;
-            if (steadyTol_ > 0 && size > 0 && change < steadyTol_ * size) {
-                log << "steady: probe change " << change / size << " < " << steadyTol_ << "\n";
-                break;
-            }
+    long writeSteps = s.steps();  // at the previous write
+    auto startInterval = [&] {
+        current_ = {0, 0, std::numeric_limits<double>::infinity(), 0, 0};
+        writeSteps = s.steps();
+    };
+    startInterval();
+    intervals_.clear();
+    stepOpen_ = false;
+    while (s.time() < endTime_ - eps) {
+        const double tWrite = nWrite * writeInterval_, tProbe = nProbe * probeInterval_;
+        const double target = std::min({tWrite, tProbe, endTime_});
+        s.advance(target - s.time());
+        chunkEnded();
+        if (tProbe <= target + eps) {
+            ++nProbe;
+            writeProbes();
+        }
+        if (!(tWrite <= target + eps)) continue;
+
+        ++nWrite;
+        writeVtu();
+        current_.time = s.time();
+        current_.subSteps = s.steps() - writeSteps;
+        current_.stableStep = s.stableTimeStep();
+        intervals_.push_back(current_);
+        log << "t = " << s.time() << "  steps " << s.steps() - steps0 << " (+" << current_.subSteps
+            << ", sub-step " << current_.minSubStep << " .. " << current_.maxSubStep << " s)"
+            << "  kinetic energy " << s.kineticEnergy();
+        startInterval();
+        double change = 0, size = 0;
+        for (std::size_t i = 0; i < probes_.size(); ++i) {
+            const Vec3 u = probeDisplacement(i);
+            log << "  " << probeNames_[i] << " (" << u.x() << ", " << u.y() << ", " << u.z()
+                << ")";
+            change = std::max(change, (u - last[i]).norm());
+            size = std::max(size, u.norm());
+            last[i] = u;
+        }
+        log << std::endl;
+        if (steadyTol_ > 0 && size > 0 && change < steadyTol_ * size) {
+            log << "steady: probe change " << change / size << " < " << steadyTol_ << "\n";
+            break;
         }
     }
-    writeProbes();
+    // the final state ends the history (endTime, or steady between probe times)
+    if (lastProbeTime_ != s.time()) writeProbes();
     probeFile_.flush();
-    return steps;
+    s.setLoadUpdate(nullptr);
+    return s.steps() - steps0;
 }
 
 }  // namespace smoothedSolid
