@@ -123,7 +123,7 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double hMin, double waveModu
           options_.stepFraction > 0 && options_.stepFraction < 1, "(0, 1)");
     range("penaltyScale", options_.penaltyScale, options_.penaltyScale > 0, "(0, inf)");
     range("depthFraction", options_.depthFraction,
-          options_.depthFraction > 0 && options_.depthFraction <= 1, "(0, 1]");
+          options_.depthFraction > 0 && options_.depthFraction <= 2, "(0, 2]");
     range("facingCosine", options_.facingCosine,
           options_.facingCosine >= 0 && options_.facingCosine < 1, "[0, 1)");
     range("dampingRatio", options_.dampingRatio,

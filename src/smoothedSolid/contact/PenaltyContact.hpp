@@ -67,7 +67,7 @@ struct ContactOptions {
     bool betweenParts = true;
     bool selfContact = false;
     double penaltyScale = 2.0;  // beta, > 0
-    double depthFraction = 0.5; // search depth = fraction * smallest element height, (0, 1]
+    double depthFraction = 0.5; // search depth = fraction * smallest element height, (0, 2]
     double facingCosine = 0.2;  // contact only if n_node . n_triangle < -facingCosine, [0, 1)
     double dampingRatio = 0.1;  // normal dashpot, fraction of critical, [0, 1]
     double stepFraction = 0.5;  // stable step with contact / without (paper: halved), (0, 1)

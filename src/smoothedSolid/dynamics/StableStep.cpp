@@ -68,8 +68,10 @@ StableStepBound::StableStepBound(const Smoothing& smoothing, Formulation formula
         std::vector<double> w(sd.node.size());
         for (int d = 0; d < nd; ++d) {
             for (int k = sd.start[d]; k < sd.start[d + 1]; ++k) {
-                w[k] = mass[sd.node[k]] * share[k] / total[sd.node[k]];
-                u.N0[d].noalias() += sd.grad[k] * sd.grad[k].transpose() / w[k];
+                // a node whose smoothed gradient in d vanishes (it can cancel
+                // on structured meshes) gets no share and adds nothing
+                w[k] = share[k] > 0 ? mass[sd.node[k]] * share[k] / total[sd.node[k]] : 0.0;
+                if (w[k] > 0) u.N0[d].noalias() += sd.grad[k] * sd.grad[k].transpose() / w[k];
                 ++u.start[sd.node[k] + 1];
             }
         }
@@ -137,7 +139,7 @@ double StableStepBound::evaluate(const Material& material,
         }
     }
     double m = 0;
-    for (double w : omega2) m = std::max(m, w);
+    for (double w : omega2) m = std::isnan(w) ? w : std::max(m, w);
     return m;
 }
 

@@ -94,7 +94,7 @@ TEST(BadInput, CaseFileContactOptions)
     expectError([&] { SolidRun run(write("contactWord", "contact self dampingRate 0.1")); },
                 {"contactWord.solid:4", "contact", "dampingRate"});
     expectError([&] { SolidRun run(write("contactFraction", "contact stepFraction 1.5")); },
-                {"contactFraction.solid", "contact", "step fraction"});
+                {"contactFraction.solid", "contact", "stepFraction"});
     // the options are taken
     SolidRun ok(write("contactGood", "contact self dampingRatio 0 stepFraction 0.3 penaltyScale 3"));
     ASSERT_NE(ok.solid().contact(), nullptr);

@@ -427,7 +427,11 @@ TEST(Contact, PlateThrownOnPlateUndampedSmallStep)
 {
     ContactOptions o;
     o.dampingRatio = 0;
-    o.stepFraction = 0.2;
+    // a small step: the gain without the dashpot is the time discretisation's
+    // and converges away (0.1 of the contact-free step, about 0.2 of the
+    // h_min/c-based step the library used before its stable step became a
+    // bound; 1.0076 at 0.2 of the bound-based step)
+    o.stepFraction = 0.1;
     plateThrownOnPlate(false, o);
     plateThrownOnPlate(true, o);
 }

@@ -194,7 +194,7 @@ TEST(Restart, ContactOptionsOutOfRangeThrowNamingTheOption)
     const std::pair<const char*, ContactOptions> cases[] = {
         {"stepFraction", [] { ContactOptions o; o.stepFraction = 1.0; return o; }()},
         {"penaltyScale", [] { ContactOptions o; o.penaltyScale = 0; return o; }()},
-        {"depthFraction", [] { ContactOptions o; o.depthFraction = 1.5; return o; }()},
+        {"depthFraction", [] { ContactOptions o; o.depthFraction = 2.5; return o; }()},
         {"facingCosine", [] { ContactOptions o; o.facingCosine = -0.1; return o; }()},
         {"dampingRatio", [] { ContactOptions o; o.dampingRatio = 2; return o; }()},
     };

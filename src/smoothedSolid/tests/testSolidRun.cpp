@@ -96,7 +96,7 @@ std::vector<double> readPvdTimes(const std::string& file)
 // (0.5) of those while apart, as the solid's stableTimeStep() says.
 TEST(SolidRun, ContactHalvesSubStepsAndOutputsAtEventTimes)
 {
-    const double gap = 0.2, W = 0.05, P = 0.005, T = 0.8;
+    const double gap = 0.2, W = 0.05, P = 0.025, T = 0.8;
     twoBoxesMsh("solidRunTwoBoxes", gap, 0.125);
     std::ostringstream text;
     text << "mesh          solidRunTwoBoxes.msh\n"
