@@ -6,6 +6,7 @@
 // speed-up.
 //   smoothedSolidBench [maxTets]     (default 1.1e6)
 #include "Parallel.hpp"
+#include "dynamics/CriticalStep.hpp"
 #include "dynamics/ExplicitSolid.hpp"
 
 #include <chrono>
@@ -35,6 +36,72 @@ double nsPerTetStep(Formulation form, int n, int* tetsOut, bool contact = false)
     return std::chrono::duration<double, std::nano>(t1 - t0).count() / steps / *tetsOut;
 }
 
+// The chosen stable step against the critical step (Lanczos), sub-steps per
+// millisecond of simulated time and cost per tet per simulated ms, with the
+// former estimate (0.8 h_min / c, undeformed) beside it; and the cost of one
+// evaluation of the bound in sub-steps
+void stableStepTable()
+{
+    std::printf("\nstable step: chosen (default safety %.2f) vs critical (Lanczos); former "
+                "estimate 0.8 h_min/c\n", SolidOptions{}.safety);
+    std::printf("%-34s %8s %11s %11s %7s %11s %9s %9s %12s %12s\n", "case", "tets", "chosen [s]",
+                "critical", "ratio", "former [s]", "subst/ms", "former", "us/tet/ms", "bound eval");
+    struct Case {
+        const char* name;
+        TetMesh mesh;
+        std::shared_ptr<Material> material;
+        double stretch;
+    };
+    const double E = 1.4e6, nu = 0.4;  // CSM3 flag: StVenantKirchhoff, rho 1000
+    auto svk = std::make_shared<StVenantKirchhoff>(StVenantKirchhoff::fromYoung(E, nu, 1000.0));
+    std::vector<Case> cases;
+    cases.push_back({"CSM3 flag 70x4x1 hex (SVK, nu 0.4)",
+                     TetMesh::box(70, 4, 1, [](const Vec3& x) {
+                         return Vec3(0.24899 + 0.35101 * x.x(), 0.19 + 0.02 * x.y(), 0.005 * x.z());
+                     }),
+                     svk, 1.0});
+    auto leaflet = std::make_shared<MooneyRivlin>(1000.0, 200.0, 50000.0, 1000.0);
+    auto slab = [] {
+        return TetMesh::box(40, 40, 2, [](const Vec3& x) { return Vec3(0.016 * x.x(), 0.016 * x.y(), 0.0003 * x.z()); });
+    };
+    cases.push_back({"leaflet slab 16x16x0.3 mm, 1.0x", slab(), leaflet, 1.0});
+    cases.push_back({"leaflet slab stretched 1.5x", slab(), leaflet, 1.5});
+    for (Case& c : cases) {
+        ExplicitSolid solid(c.mesh, c.material);
+        const double s = c.stretch;
+        std::vector<Vec3> u(solid.mesh().nNodes());
+        for (int i = 0; i < solid.mesh().nNodes(); ++i) {
+            const Vec3& X = solid.mesh().coordinates()[i];
+            u[i] = Vec3((s - 1) * X.x(), (s - 1) * X.y(), (1 / (s * s) - 1) * X.z());
+        }
+        solid.setInitialDisplacement([&](double, const Vec3& X) {
+            return Vec3((s - 1) * X.x(), (s - 1) * X.y(), (1 / (s * s) - 1) * X.z());
+        });
+        const double chosen = solid.stableTimeStep();
+        const double critical = criticalTimeStep(solid, u).dt;
+        double hMin = 1e300;
+        for (int e = 0; e < solid.mesh().nElements(); ++e) hMin = std::min(hMin, solid.mesh().elementHeight(e));
+        const double former = 0.8 * hMin / std::sqrt(c.material->waveModulus() / c.material->density());
+        // cost: sub-steps and bound evaluations
+        const int n = 400;
+        auto t0 = std::chrono::steady_clock::now();
+        for (int k = 0; k < n; ++k) solid.step(chosen);
+        auto t1 = std::chrono::steady_clock::now();
+        const double perStep = std::chrono::duration<double>(t1 - t0).count() / n;
+        t0 = std::chrono::steady_clock::now();
+        for (int k = 0; k < 20; ++k) solid.stableTimeStep(u);
+        t1 = std::chrono::steady_clock::now();
+        const double perEval = std::chrono::duration<double>(t1 - t0).count() / 20;
+        const double tets = solid.mesh().nElements();
+        std::printf("%-34s %8.0f %11.3e %11.3e %7.3f %11.3e %9.1f %9.1f %12.3f %6.2f substp\n", c.name, tets,
+                    chosen, critical, chosen / critical, former, 1e-3 / chosen, 1e-3 / former,
+                    1e6 * perStep * (1e-3 / chosen) / tets, perEval / perStep);
+    }
+    std::printf("bound evaluation: cost in sub-steps, paid once every %d sub-steps at most "
+                "(ExplicitSolid::kMaxStableStepInterval; more often while it changes)\n",
+                ExplicitSolid::kMaxStableStepInterval);
+}
+
 }  // namespace
 
 int main(int argc, char* argv[])
@@ -60,5 +127,7 @@ int main(int argc, char* argv[])
     }
     std::printf("target: selective <= 200 ns per tet per sub-step on one core "
                 "(121k-tet leaflets in under 25 ms)\n");
+    setNumThreads(1);
+    stableStepTable();
     return 0;
 }

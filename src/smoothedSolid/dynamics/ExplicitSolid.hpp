@@ -51,7 +51,7 @@ public:
     // Body force per unit mass (acceleration), e.g. gravity
     void setBodyForce(const Vec3& g) { bodyForce_ = g; }
     // Nodal external forces set by a caller (the FSI force comes in here);
-    // held constant during advance()
+    // held constant during advance() unless a load update (below) changes them
     std::vector<Vec3>& externalForce() { return fext_; }
     const std::vector<Vec3>& externalForce() const { return fext_; }
     // Called at the start of every step (also every sub-step of advance())
