@@ -186,31 +186,6 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double hMin, double waveModu
             std::sort(nb.begin(), nb.end());
             nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
         }
-        // The undeformed body must not be in contact with itself: a node
-        // within the search depth of a facing triangle of its own part means
-        // the body is thinner than the depth (the two faces of a thin
-        // leaflet would push each other apart)
-        std::vector<double> none(nn, 0.0);
-        std::vector<Vec3> f(nn, Vec3::Zero()), v(nn, Vec3::Zero());
-        std::vector<double> pressure;
-        const ContactOptions keep = options_;
-        options_.betweenParts = false;
-        addForces(mesh, X, v, 1.0, none, f, pressure);
-        options_ = keep;
-        for (const Pair& c : pairs_) {
-            if (c.id < 0) continue;
-            throw Error("contact option depthFraction = " + std::to_string(options_.depthFraction) +
-                        " (search depth " + std::to_string(depth_) + " m) lets node " +
-                        std::to_string(c.node) + " see a boundary face of its own part " +
-                        std::to_string(-c.gap) +
-                        " m behind it in the undeformed mesh: the body is thinner than the "
-                        "search depth there; lower depthFraction below " +
-                        std::to_string(options_.depthFraction * (-c.gap) / depth_) +
-                        " or use more elements through the thickness");
-        }
-        built_ = false;
-        builds_ = 0;
-        pairs_.clear();
     }
 }
 

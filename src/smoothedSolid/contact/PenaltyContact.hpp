@@ -76,10 +76,10 @@ struct ContactOptions {
 class PenaltyContact {
 public:
     // hMin: smallest element height; waveModulus, density: M = K + 4 mu/3
-    // and rho of the material; mass: lumped nodal masses. With self
-    // contact, a boundary node that already lies within the search depth
-    // of a facing boundary triangle of its own part (a body thinner than
-    // the search depth, e.g. the two faces of a thin leaflet) throws.
+    // and rho of the material; mass: lumped nodal masses. Options out of
+    // range throw naming the option. depthFraction is capped at 2: a body
+    // with two element layers through its thickness is at least 2 h_min
+    // thick, so with self contact its two faces never see each other.
     PenaltyContact(const TetMesh& mesh, double hMin, double waveModulus, double density,
                    const std::vector<double>& mass, ContactOptions options);
 

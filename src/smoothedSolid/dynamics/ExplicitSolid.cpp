@@ -35,8 +35,8 @@ ExplicitSolid::ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> mater
       options_(options),
       smoothing_(mesh_),
       uses_(domainUses(options.formulation)),
-      bound_(smoothing_, options.formulation, nodalMass(*mesh_, material_->density())),
-      mass_(nodalMass(*mesh_, material_->density()))
+      mass_(nodalMass(*mesh_, material_->density())),
+      bound_(smoothing_, options.formulation, mass_)
 {
     if (!(options_.safety > 0 && options_.safety <= 1)) {
         throw Error("ExplicitSolid: safety factor must lie in (0, 1], not " +

@@ -158,12 +158,12 @@ private:
     mutable std::vector<Mat3> Fe_, Pbar_;
     mutable std::vector<std::vector<Mat3>> Fd_, Pd_;
 
+    std::vector<double> mass_;
     StableStepBound bound_;
     std::vector<double> nodeOmega2_;
     double omega2Max_ = 0;
     int boundAge_ = 0, boundInterval_ = 1;
 
-    std::vector<double> mass_;
     std::vector<Vec3> u_, vHalf_, fext_;
     mutable std::vector<Vec3> work_;
     std::vector<Vec3> x_;  // current coordinates, for the contact search

@@ -8,42 +8,10 @@
 
 namespace smoothedSolid {
 
-namespace {
-
-// Elements of domain d of a kind, each with the share of its node masses
-// the domain holds: a quarter-element domain holds 1/4 of each of the
-// element's 4 node masses (m_e/4 each), an element all of them
-template <class F>
-void forDomainElements(const TetMesh& mesh, DomainKind kind, int d, F f)
-{
-    switch (kind) {
-        case DomainKind::Element: f(d, 1.0); break;
-        case DomainKind::Face: {
-            const Face& fc = mesh.faces()[d];
-            f(fc.owner, 0.25);
-            if (fc.neighbour >= 0) f(fc.neighbour, 0.25);
-            break;
-        }
-        case DomainKind::Node: {
-            const auto& start = mesh.nodeElementStart();
-            for (int i = start[d]; i < start[d + 1]; ++i) f(mesh.nodeElements()[i], 0.25);
-            break;
-        }
-    }
-}
-
-}  // namespace
-
 StableStepBound::StableStepBound(const Smoothing& smoothing, Formulation formulation,
                                  const std::vector<double>& mass)
 {
-    const TetMesh& mesh = smoothing.mesh();
-    const int nn = mesh.nNodes();
-    // the lumped masses per element node are rho V_e / 4: recover rho
-    double Vtot = 0, Mtot = 0;
-    for (int e = 0; e < mesh.nElements(); ++e) Vtot += mesh.elementVolume(e);
-    for (double m : mass) Mtot += m;
-    const double rho = Mtot / Vtot;
+    const int nn = smoothing.mesh().nNodes();
     invMass_.resize(nn);
     for (int i = 0; i < nn; ++i) invMass_[i] = 1.0 / mass[i];
 
@@ -86,7 +54,7 @@ StableStepBound::StableStepBound(const Smoothing& smoothing, Formulation formula
                 u.weight[i] = w[k];
             }
         }
-        u.rho.resize(nd);
+        u.rhoD.resize(nd);
         uses_.push_back(std::move(u));
     }
 }
@@ -100,14 +68,14 @@ double StableStepBound::evaluate(const Material& material,
     for (std::size_t k = 0; k < uses_.size(); ++k) {
         const Use& u = uses_[k];
         const std::vector<Mat3>& F = *Fd[k];
-        const int nd = static_cast<int>(u.rho.size());
+        const int nd = static_cast<int>(u.rhoD.size());
         const StressPart part = u.use.part;
 #pragma omp parallel for schedule(static)
         for (int d = 0; d < nd; ++d) {
             const Mat3& Fdd = F[d];
             const double J = Fdd.determinant();
             if (!(J > 0)) {
-                u.rho[d] = std::numeric_limits<double>::infinity();
+                u.rhoD[d] = std::numeric_limits<double>::infinity();
                 continue;
             }
             Eigen::SelfAdjointEigenSolver<Mat3> es;
@@ -129,12 +97,12 @@ double StableStepBound::evaluate(const Material& material,
                 es.computeDirect(N, Eigen::EigenvaluesOnly);
                 nMax = es.eigenvalues()[2];
             }
-            u.rho[d] = J * u.volume[d] * (t.shear * nMax + t.bulk * N.trace());
+            u.rhoD[d] = J * u.volume[d] * (t.shear * nMax + t.bulk * N.trace());
         }
 #pragma omp parallel for schedule(static)
         for (int i = 0; i < nn; ++i) {
             double s = 0;
-            for (int j = u.start[i]; j < u.start[i + 1]; ++j) s += u.rho[u.domain[j]] * u.weight[j];
+            for (int j = u.start[i]; j < u.start[i + 1]; ++j) s += u.rhoD[u.domain[j]] * u.weight[j];
             omega2[i] += s * invMass_[i];
         }
     }

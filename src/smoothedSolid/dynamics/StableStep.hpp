@@ -9,8 +9,9 @@
 // with Q_d(G) <= s_d |G|^2 + k_d (tr G)^2 from the material
 // (Material::tangentBound*). Each node's lumped mass is partitioned over
 // the domains it takes part in, w_dI >= 0 with sum_d w_dI = m_I for each
-// kind of domain (the V/16 shares of the elements' node masses that each
-// quarter-element domain holds; V/4 for an element). By Cauchy-Schwarz,
+// kind of domain, in proportion to the domain's stiffness on the node,
+// V_d |b_dI|^2 (stiff, small domains take more of their nodes' mass). By
+// Cauchy-Schwarz,
 // with the 3x3 matrix N_d = sum_I bt_dI bt_dI^T / w_dI = F_d^-T N0_d F_d^-1,
 //   |G_d|^2   <= lambda_max(N_d) sum_I w_dI |u_I|^2,
 //   (tr G_d)^2 <= tr(N_d)       sum_I w_dI |u_I|^2,
@@ -53,7 +54,7 @@ private:
         // per node I: the domains around it and w_dI (CSR)
         std::vector<int> start, domain;
         std::vector<double> weight;
-        mutable std::vector<double> rho;
+        mutable std::vector<double> rhoD;  // rho_d of the last evaluation
     };
     std::vector<Use> uses_;
     std::vector<double> invMass_;
