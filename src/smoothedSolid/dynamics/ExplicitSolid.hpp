@@ -85,10 +85,16 @@ public:
     // The same bound, without contact, for any displacement u (evaluated now)
     double stableTimeStep(const std::vector<Vec3>& u) const;
     // Sub-steps between two evaluations of the bound: adapts between 1 and
-    // kMaxStableStepInterval, halved when omega_max^2 grew by more than 5 %
-    // since the last evaluation, doubled when it changed by less than 1 %
+    // kMaxStableStepInterval so that omega_max^2 changes by about
+    // kStableStepDrift (10 %) between evaluations at the rate seen over the
+    // last interval (at most doubling each time)
     int stableStepInterval() const { return boundInterval_; }
-    static constexpr int kMaxStableStepInterval = 32;
+    static constexpr int kMaxStableStepInterval = 128;
+    static constexpr double kStableStepDrift = 0.10;
+    // Evaluations of the bound and the wall time they took, since this
+    // object was made (diagnostics; not part of the saved state)
+    long boundEvaluations() const { return boundEvaluations_; }
+    double boundSeconds() const { return boundSeconds_; }
     // omega_I^2 per node of the last evaluation (its maximum sets the step)
     const std::vector<double>& nodeOmega2() const { return nodeOmega2_; }
     // One central-difference step of size dt (positive, finite). Throws,
@@ -163,6 +169,8 @@ private:
     std::vector<double> nodeOmega2_;
     double omega2Max_ = 0;
     int boundAge_ = 0, boundInterval_ = 1;
+    long boundEvaluations_ = 0;
+    double boundSeconds_ = 0;
 
     std::vector<Vec3> u_, vHalf_, fext_;
     mutable std::vector<Vec3> work_;

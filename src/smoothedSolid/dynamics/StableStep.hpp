@@ -37,8 +37,12 @@ namespace smoothedSolid {
 
 class StableStepBound {
 public:
+    // material: the weights are balanced for it in the reference
+    // configuration (balanceIterations rounds, 0: the initial partition)
     StableStepBound(const Smoothing& smoothing, Formulation formulation,
-                    const std::vector<double>& mass);
+                    const std::vector<double>& mass, const Material& material,
+                    int balanceIterations = kBalanceIterations);
+    static constexpr int kBalanceIterations = 30;
 
     // omega_I^2 per node for the domain deformation gradients Fd (one array
     // per DomainUse of the formulation, in the order of domainUses());
@@ -51,11 +55,18 @@ private:
         DomainUse use;
         std::vector<double> volume;  // V_d
         std::vector<Mat3> N0;        // sum_I b_dI b_dI^T / w_dI
-        // per node I: the domains around it and w_dI (CSR)
-        std::vector<int> start, domain;
+        // domain entries (as SmoothingDomains): b_dI and w_dI
+        std::vector<int> entryStart;
+        std::vector<Vec3> grad;
         std::vector<double> weight;
+        // per node I: its entries and their domains (CSR)
+        std::vector<int> start, entry, domain;
+        std::vector<double> nodeWeight;  // w_dI / m_I in CSR order
         mutable std::vector<double> rhoD;  // rho_d of the last evaluation
     };
+    void updateN0();
+    void balance(const Material& material, int iterations);
+
     std::vector<Use> uses_;
     std::vector<double> invMass_;
 };
