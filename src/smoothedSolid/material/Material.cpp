@@ -263,6 +263,15 @@ Mat3 HolzapfelGasserOgden::stressDeviatoric(const Mat3& F, const Vec3& a0) const
 // for the stiffer side). Without a0, I4 = a0.C a0 <= lambda_max(C) gives a
 // bound valid for every direction (tight when the fibres lie along the
 // largest principal stretch, loose when the tissue is stretched across them).
+// Even with a0 the |G|_F^2 form is loose on thin sheets: the fibres stiffen
+// only the gradient along a, G a, never the through-thickness one. A tighter
+// step bound would keep that as a third coefficient beside shear and bulk,
+//   Q_f(G) <= (1/J) (4 psi2 I4 + 2 psi1) |G a|^2,
+// and, in the notation of dynamics/StableStep.hpp (G_d = sum_I u_I (x) bt_dI,
+// bt_dI = F^-T b_dI, so bt_dI . a = b_dI . a0),
+//   |G_d a|^2 <= (a0 . N0_d a0) sum_I w_dI |u_I|^2,
+// independent of the current shape of the domain: a per-domain fibre
+// direction in StableStepBound (not wired yet).
 Material::TangentBound HolzapfelGasserOgden::fibreBound(const Mat3& F, const Vec3& lambda2,
                                                         double I4) const
 {

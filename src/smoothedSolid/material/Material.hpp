@@ -154,27 +154,27 @@ private:
     double mu_, lambda_;
 };
 
-// Fibre-reinforced soft tissue of the Holzapfel-Gasser-Ogden kind
-// (Holzapfel, Gasser & Ogden, J Elasticity 61:1, 2000, Eq. 51 with one
-// fibre family and no dispersion): an isochoric Mooney-Rivlin matrix, one
-// exponential fibre family and the volumetric penalty of MooneyRivlin,
+// Fibre-reinforced soft tissue of the Holzapfel-Gasser-Ogden kind (the
+// exponential fibre term of Holzapfel, Gasser & Ogden, J Elasticity 61:1-48,
+// 2000, with one fibre family and no dispersion): an isochoric
+// Mooney-Rivlin matrix, one exponential fibre family and the volumetric
+// penalty of MooneyRivlin,
 //   W = c10 (I1bar - 3) + c01 (I2bar - 3)
 //       + k1/(2 k2) (exp(k2 (I4 - 1)^2) - 1)   [only while I4 > 1]
 //       + kappa/2 (J - 1)^2,
 //   I4 = a0 . C a0 = |F a0|^2 (squared fibre stretch), a0 the unit fibre
 //   direction in the reference configuration.
 // Fibres bear tension only: the fibre term is off while I4 <= 1 (Holzapfel
-// et al. 2000, Sect. 4.4). The fibre term uses the full I4, not
-// I4bar = J^(-2/3) I4: with a penalty on J (nearly, not exactly,
-// incompressible) the split form gives a non-physical volumetric response of
-// the fibres (a fibre-reinforced body under hydrostatic pressure does not
-// deform as a sphere would; Sansour, Eur J Mech A/Solids 27:28, 2008;
-// Helfenstein, Jabareen, Mazza & Govindjee, Int J Solids Struct 47:2056,
-// 2010), so the anisotropic part is taken in the full I4. It is carried by
-// the deviatoric part, evaluated on the face-based domains of the selective
-// FS/NS-FEM like the matrix (it is not purely isochoric, but it is no bulk
-// term: the node-based domains, whose softness cures volumetric locking,
-// carry the penalty only).
+// et al. 2000). The fibre term uses the full I4, not I4bar = J^(-2/3) I4:
+// with a penalty on J (nearly, not exactly, incompressible) the split form
+// gives a non-physical volumetric response (a fibre-reinforced sphere under
+// hydrostatic pressure stays a sphere, as if it had no fibres; Sansour, Eur J
+// Mech A/Solids 27:28-39, 2008; Helfenstein, Jabareen, Mazza & Govindjee, Int
+// J Solids Struct 47:2056-2061, 2010), so the anisotropic part is taken in the
+// full I4. It is carried by the deviatoric part, evaluated on the face-based
+// domains of the selective FS/NS-FEM like the matrix (it is not purely
+// isochoric, but it is no bulk term: the node-based domains, whose softness
+// cures volumetric locking, carry the penalty only).
 // Stress (dI4/dF = 2 F a0 (x) a0):
 //   P_fibre = 2 psi1 (F a0) (x) a0,  psi1 = k1 (I4 - 1) exp(k2 (I4 - 1)^2).
 // Small-strain moduli: those of the matrix (the fibres are slack at F = I).

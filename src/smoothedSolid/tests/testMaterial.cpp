@@ -320,7 +320,7 @@ Mat3 finiteDifference(const Material& m, const Mat3& F, const Vec3& a0)
 
 // The fibre term's first PK stress for F = diag(l) and a0 = e_k, by hand:
 // I4 = l_k^2, P_kk = 2 psi1(I4) l_k, psi1 = k1 (I4 - 1) exp(k2 (I4 - 1)^2)
-// while I4 > 1 (Holzapfel, Gasser & Ogden 2000, Eq. 51 with one family)
+// while I4 > 1 (Holzapfel, Gasser & Ogden 2000, one fibre family)
 double fibrePK1(const FibreConstants& c, double l)
 {
     const double E4 = l * l - 1;
@@ -403,7 +403,7 @@ TEST(FibreMaterial, FibresInactiveInCompression)
 // across: a0 = e2. Rotated, F = R diag(l) Q^T with a0 = Q e_k, P = R P_diag Q^T.
 // Then the incompressible textbook form, Cauchy
 //   sigma = 2 c10 B - 2 c01 B^-1 + 2 psi1 a (x) a - p I,  a = F a0
-// (Holzapfel, Gasser & Ogden 2000, Eq. 53 with the full I4), whose principal
+// (the fibre part: sigma_f = (2/J) psi1 a (x) a, from P_f = 2 psi1 a (x) a0), whose principal
 // differences in uniaxial tension l along e1 (J = 1) are
 //   along:  sigma_1 - sigma_2 = 2 (l^2 - 1/l)(c10 + c01/l) + 2 k1 l^2 (l^2-1) e^{k2 (l^2-1)^2}
 //   across: sigma_1 - sigma_2 = 2 (l^2 - 1/l)(c10 + c01/l) + 0               (l > 1: fibre shortened)
