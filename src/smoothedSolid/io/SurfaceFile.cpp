@@ -89,7 +89,7 @@ RigidSurface readStl(const std::string& file, bool flip)
                     "84 + 50 n bytes)");
     }
     std::vector<Vec3> loop;
-    int line = 0;  // facet count, for messages
+    int line = 0;  // facets read, for messages
     while (in >> word) {
         if (word == "vertex") {
             Vec3 x;
@@ -108,6 +108,10 @@ RigidSurface readStl(const std::string& file, bool flip)
             loop.clear();
             ++line;
         }
+    }
+    if (!loop.empty()) {
+        throw Error("surface file '" + file + "': facet " + std::to_string(line) +
+                    " has no 'endloop' (the file is cut short?)");
     }
     return b.finish(flip);
 }
