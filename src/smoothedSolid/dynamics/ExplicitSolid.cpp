@@ -156,6 +156,44 @@ void ExplicitSolid::addRigidSurface(RigidSurface surface)
     contact_->addRigidSurface(std::move(surface));
 }
 
+void ExplicitSolid::setFibreDirections(std::vector<Vec3> a0)
+{
+    if (!material_->hasFibres()) {
+        throw Error("setFibreDirections: material " + material_->name() +
+                    " has no fibres (use a fibre-reinforced material such as holzapfelGasserOgden)");
+    }
+    const int ne = mesh_->nElements();
+    if (static_cast<int>(a0.size()) != ne) {
+        throw Error("setFibreDirections: " + std::to_string(a0.size()) + " directions for " +
+                    std::to_string(ne) + " elements (give one per element)");
+    }
+    for (int e = 0; e < ne; ++e) {
+        const double n = a0[e].norm();
+        if (!(n > 0) || !std::isfinite(n)) {
+            throw Error("setFibreDirections: the direction of element " + std::to_string(e) +
+                        " is zero or not finite");
+        }
+        a0[e] /= n;
+    }
+    std::vector<std::vector<Vec3>> domain(uses_.size());
+    for (std::size_t k = 0; k < uses_.size(); ++k) {
+        smoothing_.domainDirections(uses_[k].kind, a0, domain[k]);
+    }
+    fibreElement_ = std::move(a0);
+    fibreDomain_ = std::move(domain);
+}
+
+const std::vector<Vec3>* ExplicitSolid::fibres(std::size_t k) const
+{
+    if (!material_->hasFibres() || uses_[k].part == StressPart::Volumetric) return nullptr;
+    if (fibreDomain_.empty()) {
+        throw Error("material " + material_->name() +
+                    " needs fibre directions: call ExplicitSolid::setFibreDirections (case "
+                    "files: the 'fibres' entry)");
+    }
+    return &fibreDomain_[k];
+}
+
 void ExplicitSolid::deformationGradients(const std::vector<Vec3>& u) const
 {
     smoothing_.elementF(u, Fe_);
@@ -199,6 +237,7 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
         const std::vector<Mat3>& F = Fd_[k];
         std::vector<Mat3>& P = Pd_[k];
         const int nd = static_cast<int>(F.size());
+        const std::vector<Vec3>* a = fibres(k);
         // An inverted domain is recorded (lowest index) inside the parallel
         // loop and reported after it: exceptions cannot leave an OpenMP loop
         int bad = std::numeric_limits<int>::max();
@@ -210,8 +249,10 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
                 continue;
             }
             switch (use.part) {
-                case StressPart::Full: P[d] = m.firstPK(F[d]); break;
-                case StressPart::Deviatoric: P[d] = m.stressDeviatoric(F[d]); break;
+                case StressPart::Full: P[d] = a ? m.firstPK(F[d], (*a)[d]) : m.firstPK(F[d]); break;
+                case StressPart::Deviatoric:
+                    P[d] = a ? m.stressDeviatoric(F[d], (*a)[d]) : m.stressDeviatoric(F[d]);
+                    break;
                 case StressPart::Volumetric: P[d] = m.stressVolumetric(F[d]); break;
             }
         }
@@ -266,11 +307,14 @@ double ExplicitSolid::strainEnergy(const std::vector<Vec3>& u) const
     double W = 0;
     for (std::size_t k = 0; k < uses_.size(); ++k) {
         const std::vector<Mat3>& F = Fd_[k];
+        const std::vector<Vec3>* a = fibres(k);
         for (int d = 0; d < static_cast<int>(F.size()); ++d) {
             const double V = smoothing_.volume(uses_[k].kind, d);
             switch (uses_[k].part) {
-                case StressPart::Full: W += V * m.energy(F[d]); break;
-                case StressPart::Deviatoric: W += V * m.energyDeviatoric(F[d]); break;
+                case StressPart::Full: W += V * (a ? m.energy(F[d], (*a)[d]) : m.energy(F[d])); break;
+                case StressPart::Deviatoric:
+                    W += V * (a ? m.energyDeviatoric(F[d], (*a)[d]) : m.energyDeviatoric(F[d]));
+                    break;
                 case StressPart::Volumetric: W += V * m.energyVolumetric(F[d]); break;
             }
         }
@@ -447,11 +491,14 @@ void ExplicitSolid::elementStress(std::vector<Mat3>& sigma, std::vector<double>&
         const int nd = static_cast<int>(F.size());
         std::vector<Mat3> s(nd);
         std::vector<double> j(nd);
+        const std::vector<Vec3>* a = fibres(k);
         for (int d = 0; d < nd; ++d) {
             Mat3 P = Mat3::Zero();
             switch (uses_[k].part) {
-                case StressPart::Full: P = m.firstPK(F[d]); break;
-                case StressPart::Deviatoric: P = m.stressDeviatoric(F[d]); break;
+                case StressPart::Full: P = a ? m.firstPK(F[d], (*a)[d]) : m.firstPK(F[d]); break;
+                case StressPart::Deviatoric:
+                    P = a ? m.stressDeviatoric(F[d], (*a)[d]) : m.stressDeviatoric(F[d]);
+                    break;
                 case StressPart::Volumetric: P = m.stressVolumetric(F[d]); break;
             }
             j[d] = F[d].determinant();

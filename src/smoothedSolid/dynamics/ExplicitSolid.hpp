@@ -59,6 +59,18 @@ public:
     // externalForce() and setBodyForce(); none by default
     void setLoadUpdate(std::function<void(double t)> update) { loadUpdate_ = std::move(update); }
 
+    // --- fibre directions (fibre-reinforced materials) --------------------
+    // One direction per element in the reference configuration (normalised
+    // here; a zero or non-finite one throws naming the element). Each
+    // smoothing domain the formulation integrates over takes the
+    // sign-aligned, volume-weighted mean of its elements' directions
+    // (Smoothing::domainDirections). A material with hasFibres() needs them
+    // before the first force evaluation; an isotropic one rejects them. They
+    // are set up like the mesh, not stored in state files: set them again
+    // before loadState().
+    void setFibreDirections(std::vector<Vec3> a0);
+    const std::vector<Vec3>& fibreDirections() const { return fibreElement_; }
+
     // --- contact (paper Eq. 43) ------------------------------------------
     // Frictionless penalty contact between parts / within a part; the
     // stable time step then accounts for the penalty springs
@@ -151,6 +163,9 @@ private:
     // Fe_ and the domain F's of every DomainUse for displacement u
     void deformationGradients(const std::vector<Vec3>& u) const;
     void refreshBound();
+    // The fibre directions of use k's domains when its stress part needs
+    // them (null for isotropic materials and the volumetric part)
+    const std::vector<Vec3>* fibres(std::size_t k) const;
 
     std::shared_ptr<const TetMesh> mesh_;
     std::shared_ptr<const Material> material_;
@@ -163,6 +178,10 @@ private:
     // Scratch: element F, per use the domain F and stress, element stress sums
     mutable std::vector<Mat3> Fe_, Pbar_;
     mutable std::vector<std::vector<Mat3>> Fd_, Pd_;
+
+    // Fibre directions per element and, per use, per domain
+    std::vector<Vec3> fibreElement_;
+    std::vector<std::vector<Vec3>> fibreDomain_;
 
     std::vector<double> mass_;
     StableStepBound bound_;

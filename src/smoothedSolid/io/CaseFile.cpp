@@ -11,7 +11,8 @@ namespace {
 const std::set<std::string> kKeywords = {
     "mesh",   "box",      "hex",      "material", "formulation", "fix",           "planeStrain",
     "bodyForce", "pressure", "traction", "damping",  "safety",        "contact",
-    "endTime", "writeInterval", "output", "probe",   "probeInterval", "steadyTolerance"};
+    "endTime", "writeInterval", "output", "probe",   "probeInterval", "steadyTolerance",
+    "fibres", "contactSurface"};
 }
 
 CaseFile::CaseFile(const std::string& fileName) : file_(fileName)

@@ -9,6 +9,19 @@
 //   material      neoHookean mu 80 K 4e5 rho 1
 //                 mooneyRivlin c10 1000 c01 200 kappa 5e4 rho 1000   (or nu 0.49)
 //                 stVenantKirchhoff mu 0.5e6 nu 0.4 rho 1000          (or lambda)
+//                 holzapfelGasserOgden c10 .. [c01 ..] k1 .. k2 .. kappa .. rho ..
+//                                             fibre-reinforced tissue (or nu for
+//                                             kappa; c01 default 0; constants for
+//                                             aortic leaflets: docs/references.md);
+//                                             needs a 'fibres' entry
+//   fibres        cylindrical origin (x y z) axis (x y z)
+//                                             each element's fibre direction: the
+//                                             circumferential e_theta = axis x r
+//                                             (normalised, right-handed about the
+//                                             axis) at its centroid
+//                 uniform (x y z)             or one direction for all
+//                                             (parentheses optional; only with a
+//                                             fibre-reinforced material)
 //   formulation   selective | FS-FEM | NS-FEM | FEM-T4
 //   fix           <nodeSet> [xyz | x | y | z | xy | ...]
 //   planeStrain   z                           fix that component everywhere
@@ -21,6 +34,15 @@
 //                                             penalty contact between parts
 //                                             (and within them); see
 //                                             contact/PenaltyContact.hpp
+//   contactSurface wall.stl [flip]            a rigid triangulated surface the
+//                                             solid cannot pass (contact is
+//                                             enabled with the defaults if no
+//                                             'contact' entry); .stl (ASCII or
+//                                             binary) or gmsh .msh (its 3-node
+//                                             triangles), relative to the case
+//                                             file; triangle normals
+//                                             (x1-x0)x(x2-x0) must face the solid,
+//                                             'flip' reverses them; several allowed
 //   endTime       T                           the run advances with sub-steps
 //                                             at the solid's current stable
 //                                             step, ending exactly at each

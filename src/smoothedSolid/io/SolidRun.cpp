@@ -1,10 +1,13 @@
 #include "io/SolidRun.hpp"
 
+#include "io/SurfaceFile.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <algorithm>
 #include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace smoothedSolid {
 
@@ -37,6 +40,17 @@ std::shared_ptr<Material> makeMaterial(const CaseFile& c, const CaseEntry& e)
             if (!hasKappa) kappa = MooneyRivlin::kappaFromPoisson(c10, c01, c.named(e, "nu"));
             return std::make_shared<MooneyRivlin>(c10, c01, kappa, c.named(e, "rho"));
         }
+        if (type == "holzapfelGasserOgden") {
+            const double c10 = c.named(e, "c10");
+            bool hasC01 = false, hasKappa = false;
+            double c01 = c.named(e, "c01", &hasC01);
+            if (!hasC01) c01 = 0;
+            double kappa = c.named(e, "kappa", &hasKappa);
+            if (!hasKappa) kappa = MooneyRivlin::kappaFromPoisson(c10, c01, c.named(e, "nu"));
+            return std::make_shared<HolzapfelGasserOgden>(c10, c01, c.named(e, "k1"),
+                                                          c.named(e, "k2"), kappa,
+                                                          c.named(e, "rho"));
+        }
         if (type == "stVenantKirchhoff") {
             const double mu = c.named(e, "mu");
             bool hasLambda = false;
@@ -49,10 +63,65 @@ std::shared_ptr<Material> makeMaterial(const CaseFile& c, const CaseEntry& e)
             return std::make_shared<StVenantKirchhoff>(mu, lambda, c.named(e, "rho"));
         }
     } catch (const Error& ex) {
+        // messages of CaseFile::named() name the file and line already
+        if (std::string(ex.what()).rfind(c.fileName() + ":", 0) == 0) throw;
         c.fail(e, ex.what());
     }
     c.fail(e, "unknown material '" + type +
-                  "': use neoHookean, mooneyRivlin or stVenantKirchhoff");
+                  "': use neoHookean, mooneyRivlin, stVenantKirchhoff or holzapfelGasserOgden");
+}
+
+// The 'fibres' entry: one unit direction per element (reference configuration)
+//   fibres uniform (x y z)
+//   fibres cylindrical origin (x y z) axis (x y z)
+// cylindrical: e_theta = axis x r / |axis x r| at the element's centroid, r
+// from the origin (right-handed about the axis); parentheses optional
+std::vector<Vec3> fibreDirections(const CaseFile& c, const CaseEntry& e, const TetMesh& mesh)
+{
+    // the arguments without parentheses and commas
+    CaseEntry a{e.keyword, {}, e.line};
+    {
+        std::string all;
+        for (const auto& s : e.args) all += s + " ";
+        for (char& ch : all) {
+            if (ch == '(' || ch == ')' || ch == ',') ch = ' ';
+        }
+        std::istringstream is(all);
+        std::string w;
+        while (is >> w) a.args.push_back(w);
+    }
+    auto vec = [&](std::size_t i) { return Vec3(c.number(a, i), c.number(a, i + 1), c.number(a, i + 2)); };
+    const char* usage =
+        "expected 'uniform (x y z)' or 'cylindrical origin (x y z) axis (x y z)'";
+    if (a.args.empty()) c.fail(e, usage);
+    const int ne = mesh.nElements();
+    if (a.args[0] == "uniform") {
+        if (a.args.size() != 4) c.fail(e, usage);
+        const Vec3 d = vec(1);
+        if (!(d.norm() > 0)) c.fail(e, "the fibre direction must not be zero");
+        return std::vector<Vec3>(ne, d.normalized());
+    }
+    if (a.args[0] == "cylindrical") {
+        if (a.args.size() != 9 || a.args[1] != "origin" || a.args[5] != "axis") c.fail(e, usage);
+        const Vec3 o = vec(2), axis = vec(6);
+        if (!(axis.norm() > 0)) c.fail(e, "the axis must not be zero");
+        const Vec3 n = axis.normalized();
+        const auto& X = mesh.coordinates();
+        std::vector<Vec3> d(ne);
+        for (int el = 0; el < ne; ++el) {
+            const Tet& t = mesh.elements()[el];
+            const Vec3 r = 0.25 * (X[t[0]] + X[t[1]] + X[t[2]] + X[t[3]]) - o;
+            const Vec3 et = n.cross(r);
+            if (!(et.norm() > 1e-9 * std::max(1.0, r.norm()))) {
+                c.fail(e, "element " + std::to_string(el) +
+                              " has its centroid on the axis, where the circumferential "
+                              "direction is undefined: move the origin or the axis");
+            }
+            d[el] = et.normalized();
+        }
+        return d;
+    }
+    c.fail(e, "unknown fibre layout '" + a.args[0] + "': " + usage);
 }
 
 TetMesh makeMesh(const CaseFile& c)
@@ -138,6 +207,19 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
             case_.fail(e, ex.what());
         }
     };
+    if (const auto* e = case_.find("fibres", true)) {
+        if (!s.material().hasFibres()) {
+            case_.fail(*e, "material " + s.material().name() +
+                               " has no fibres: remove this entry or use holzapfelGasserOgden");
+        }
+        std::vector<Vec3> a = fibreDirections(case_, *e, s.mesh());
+        guarded(*e, [&] { s.setFibreDirections(std::move(a)); });
+    } else if (s.material().hasFibres()) {
+        case_.fail(*case_.find("material"),
+                   "material " + s.material().name() +
+                       " needs fibre directions: add 'fibres cylindrical origin (x y z) axis "
+                       "(x y z)' or 'fibres uniform (x y z)'");
+    }
     for (const auto* e : case_.all("fix")) {
         if (e->args.empty()) case_.fail(*e, "expected a node set");
         guarded(*e, [&] { s.fix(e->args[0], componentMask(case_, *e, 1)); });
@@ -185,6 +267,18 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
             *target = case_.number(*e, i + 1);
         }
         guarded(*e, [&] { s.enableContact(co); });
+    }
+    // Rigid contact surfaces (walls): contactSurface <file> [flip], relative
+    // to the case directory; contact (between parts) is enabled with the
+    // defaults if no 'contact' entry did
+    for (const auto* e : case_.all("contactSurface")) {
+        const bool flip = e->args.size() == 2 && e->args[1] == "flip";
+        if (e->args.empty() || e->args.size() > 2 || (e->args.size() == 2 && !flip)) {
+            case_.fail(*e, "expected <surface file (.stl or .msh)> [flip]");
+        }
+        std::filesystem::path p(e->args[0]);
+        if (p.is_relative()) p = std::filesystem::path(case_.directory()) / p;
+        guarded(*e, [&] { s.addRigidSurface(readRigidSurface(p.string(), flip)); });
     }
 
     endTime_ = case_.number(*case_.find("endTime"), 0);

@@ -135,6 +135,22 @@ void VtuSeries::write(const ExplicitSolid& solid, const NodalFields& extra)
     dataArray(os, "Float64", "vonMises", 1, mises);
     dataArray(os, "Float64", "maxPrincipalStress", 1, maxPrincipal);
     dataArray(os, "Float64", "J", 1, J);
+    if (!solid.fibreDirections().empty()) {
+        // the fibres in the current configuration: a = F_e a0, unit
+        // direction and stretch |a| per element
+        const auto& u = solid.displacement();
+        std::vector<double> dir(3 * ne), stretch(ne);
+        for (int e = 0; e < ne; ++e) {
+            const auto g = elementGradients(mesh, e);
+            Mat3 F = Mat3::Identity();
+            for (int a = 0; a < 4; ++a) F += u[mesh.elements()[e][a]] * g.row(a);
+            const Vec3 a = F * solid.fibreDirections()[e];
+            stretch[e] = a.norm();
+            for (int k = 0; k < 3; ++k) dir[3 * e + k] = a[k] / stretch[e];
+        }
+        dataArray(os, "Float64", "fibreDirection", 3, dir);
+        dataArray(os, "Float64", "fibreStretch", 1, stretch);
+    }
     os << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
     if (!os) throw Error("error while writing '" + directory_ + "/" + file + "'");
 

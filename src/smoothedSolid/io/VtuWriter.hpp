@@ -20,7 +20,9 @@ public:
     using NodalFields = std::map<std::string, std::vector<double>>;
 
     // Write the current configuration with displacement, velocity, external
-    // force, Cauchy stress, von Mises, maximum principal stress and J
+    // force, Cauchy stress, von Mises, maximum principal stress and J; with
+    // fibre directions set, per element the current fibre direction
+    // F a0 / |F a0| ("fibreDirection") and stretch |F a0| ("fibreStretch")
     void write(const ExplicitSolid& solid, const NodalFields& extra = {});
 
     int count() const { return static_cast<int>(times_.size()); }

@@ -208,4 +208,92 @@ Mat3 StVenantKirchhoff::stressVolumetric(const Mat3& F) const
     return lambda_ * trE * F;
 }
 
+// ---------------------------------------------------------------------------
+
+HolzapfelGasserOgden::HolzapfelGasserOgden(double c10, double c01, double k1, double k2,
+                                           double kappa, double rho)
+    : MooneyRivlin(c10, c01, kappa, rho), k1_(k1), k2_(k2)
+{
+    requirePositive("holzapfelGasserOgden", "k1", k1);
+    requirePositive("holzapfelGasserOgden", "k2", k2);
+}
+
+namespace {
+
+[[noreturn]] void needsDirection()
+{
+    throw Error("holzapfelGasserOgden: the fibre term needs the fibre direction a0 (use the "
+                "overloads with a0; ExplicitSolid::setFibreDirections)");
+}
+
+}  // namespace
+
+double HolzapfelGasserOgden::energyDeviatoric(const Mat3&) const { needsDirection(); }
+Mat3 HolzapfelGasserOgden::stressDeviatoric(const Mat3&) const { needsDirection(); }
+
+double HolzapfelGasserOgden::energyDeviatoric(const Mat3& F, const Vec3& a0) const
+{
+    double W = MooneyRivlin::energyDeviatoric(F);
+    const double E4 = (F * a0).squaredNorm() - 1.0;  // I4 - 1
+    if (E4 > 0) W += 0.5 * k1_ / k2_ * std::expm1(k2_ * E4 * E4);
+    return W;
+}
+
+// P_fibre = 2 psi1 (F a0) (x) a0, psi1 = dW_f/dI4 = k1 (I4 - 1) exp(k2 (I4 - 1)^2)
+Mat3 HolzapfelGasserOgden::stressDeviatoric(const Mat3& F, const Vec3& a0) const
+{
+    Mat3 P = MooneyRivlin::stressDeviatoric(F);
+    const Vec3 a = F * a0;
+    const double E4 = a.squaredNorm() - 1.0;
+    if (E4 > 0) P.noalias() += (2.0 * k1_ * E4 * std::exp(k2_ * E4 * E4)) * a * a0.transpose();
+    return P;
+}
+
+// The fibre term's share of Q(G) (Material.hpp): W_f = Psi(I4), I4 = |F a0|^2.
+// Along dF = G F, with a = F a0 (|a|^2 = I4): dI4 = 2 a.(G a), d2I4 = 2 |G a|^2,
+// so the full second variation (elastic and geometric terms together) is
+//   Q_f(G) = (1/J) (4 psi2 (a.G a)^2 + 2 psi1 |G a|^2),
+//   psi1 = Psi'  = k1 (I4 - 1) exp(k2 (I4 - 1)^2),
+//   psi2 = Psi'' = k1 (1 + 2 k2 (I4 - 1)^2) exp(k2 (I4 - 1)^2)   (I4 > 1; 0 below).
+// With |a.G a| <= |a|^2 |G|_2 <= I4 |G|_F and |G a|^2 <= I4 |G|_F^2:
+//   Q_f(G) <= (1/J) (4 psi2 I4^2 + 2 psi1 I4) |G|_F^2   (a shear term only).
+// psi1, psi2 and the bound grow with I4 on I4 >= 1, so the bound is taken
+// at I4* = max(I4, 1): at I4 <= 1 the fibres are slack but a vibration about
+// a state near I4 = 1 switches them on with psi2 -> k1 (the bound must hold
+// for the stiffer side). Without a0, I4 = a0.C a0 <= lambda_max(C) gives a
+// bound valid for every direction (tight when the fibres lie along the
+// largest principal stretch, loose when the tissue is stretched across them).
+// Even with a0 the |G|_F^2 form is loose on thin sheets: the fibres stiffen
+// only the gradient along a, G a, never the through-thickness one. A tighter
+// step bound would keep that as a third coefficient beside shear and bulk,
+//   Q_f(G) <= (1/J) (4 psi2 I4 + 2 psi1) |G a|^2,
+// and, in the notation of dynamics/StableStep.hpp (G_d = sum_I u_I (x) bt_dI,
+// bt_dI = F^-T b_dI, so bt_dI . a = b_dI . a0),
+//   |G_d a|^2 <= (a0 . N0_d a0) sum_I w_dI |u_I|^2,
+// independent of the current shape of the domain: a per-domain fibre
+// direction in StableStepBound (not wired yet).
+Material::TangentBound HolzapfelGasserOgden::fibreBound(const Mat3& F, const Vec3& lambda2,
+                                                        double I4) const
+{
+    TangentBound t = MooneyRivlin::tangentBoundDeviatoric(F, lambda2);
+    const double I4s = std::max(I4, 1.0), E4 = I4s - 1.0;
+    const double e = std::exp(k2_ * E4 * E4);
+    const double psi1 = k1_ * E4 * e, psi2 = k1_ * (1.0 + 2.0 * k2_ * E4 * E4) * e;
+    t.shear += (4.0 * psi2 * I4s * I4s + 2.0 * psi1 * I4s) / F.determinant();
+    return t;
+}
+
+Material::TangentBound HolzapfelGasserOgden::tangentBoundDeviatoric(const Mat3& F,
+                                                                    const Vec3& lambda2) const
+{
+    return fibreBound(F, lambda2, lambda2.maxCoeff());
+}
+
+Material::TangentBound HolzapfelGasserOgden::tangentBoundDeviatoric(const Mat3& F,
+                                                                    const Vec3& lambda2,
+                                                                    const Vec3& a0) const
+{
+    return fibreBound(F, lambda2, (F * a0).squaredNorm());
+}
+
 }  // namespace smoothedSolid

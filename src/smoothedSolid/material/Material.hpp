@@ -55,6 +55,42 @@ public:
     virtual TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const = 0;
     virtual TangentBound tangentBoundVolumetric(const Mat3& F, const Vec3& lambda2) const = 0;
 
+    // --- Fibre-reinforced (anisotropic) materials ------------------------
+    // The deviatoric part of such a material also depends on a unit fibre
+    // direction a0 in the reference configuration. The solver keeps one per
+    // smoothing domain (ExplicitSolid::setFibreDirections) and calls the
+    // overloads below only when hasFibres(); isotropic materials keep their
+    // F-only path (these defaults forward to it and ignore a0). The F-only
+    // energy and stress of a fibre material throw (no direction); its F-only
+    // tangent bound holds for every direction a0.
+    virtual bool hasFibres() const { return false; }
+    virtual double energyDeviatoric(const Mat3& F, const Vec3& /*a0*/) const
+    {
+        return energyDeviatoric(F);
+    }
+    virtual Mat3 stressDeviatoric(const Mat3& F, const Vec3& /*a0*/) const
+    {
+        return stressDeviatoric(F);
+    }
+    // A bound for the direction a0 (tighter than the F-only one)
+    virtual TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2,
+                                                const Vec3& /*a0*/) const
+    {
+        return tangentBoundDeviatoric(F, lambda2);
+    }
+    double energy(const Mat3& F, const Vec3& a0) const
+    {
+        return energyDeviatoric(F, a0) + energyVolumetric(F);
+    }
+    Mat3 firstPK(const Mat3& F, const Vec3& a0) const
+    {
+        return stressDeviatoric(F, a0) + stressVolumetric(F);
+    }
+    Mat3 cauchy(const Mat3& F, const Vec3& a0) const
+    {
+        return firstPK(F, a0) * F.transpose() / F.determinant();
+    }
+
 protected:
     explicit Material(double rho);
     double rho_;
@@ -68,6 +104,9 @@ class MooneyRivlin : public Material {
 public:
     MooneyRivlin(double c10, double c01, double kappa, double rho);
     static double kappaFromPoisson(double c10, double c01, double nu);
+    using Material::energyDeviatoric;
+    using Material::stressDeviatoric;
+    using Material::tangentBoundDeviatoric;
 
     std::string name() const override { return "MooneyRivlin"; }
     double energyDeviatoric(const Mat3& F) const override;
@@ -97,6 +136,9 @@ class StVenantKirchhoff : public Material {
 public:
     StVenantKirchhoff(double mu, double lambda, double rho);
     static StVenantKirchhoff fromYoung(double E, double nu, double rho);
+    using Material::energyDeviatoric;
+    using Material::stressDeviatoric;
+    using Material::tangentBoundDeviatoric;
 
     std::string name() const override { return "StVenantKirchhoff"; }
     double energyDeviatoric(const Mat3& F) const override;
@@ -110,6 +152,61 @@ public:
 
 private:
     double mu_, lambda_;
+};
+
+// Fibre-reinforced soft tissue of the Holzapfel-Gasser-Ogden kind (the
+// exponential fibre term of Holzapfel, Gasser & Ogden, J Elasticity 61:1-48,
+// 2000, with one fibre family and no dispersion): an isochoric
+// Mooney-Rivlin matrix, one exponential fibre family and the volumetric
+// penalty of MooneyRivlin,
+//   W = c10 (I1bar - 3) + c01 (I2bar - 3)
+//       + k1/(2 k2) (exp(k2 (I4 - 1)^2) - 1)   [only while I4 > 1]
+//       + kappa/2 (J - 1)^2,
+//   I4 = a0 . C a0 = |F a0|^2 (squared fibre stretch), a0 the unit fibre
+//   direction in the reference configuration.
+// Fibres bear tension only: the fibre term is off while I4 <= 1 (Holzapfel
+// et al. 2000). The fibre term uses the full I4, not I4bar = J^(-2/3) I4:
+// with a penalty on J (nearly, not exactly, incompressible) the split form
+// gives a non-physical volumetric response (a fibre-reinforced sphere under
+// hydrostatic pressure stays a sphere, as if it had no fibres; Sansour, Eur J
+// Mech A/Solids 27:28-39, 2008; Helfenstein, Jabareen, Mazza & Govindjee, Int
+// J Solids Struct 47:2056-2061, 2010), so the anisotropic part is taken in the
+// full I4. It is carried by the deviatoric part, evaluated on the face-based
+// domains of the selective FS/NS-FEM like the matrix (it is not purely
+// isochoric, but it is no bulk term: the node-based domains, whose softness
+// cures volumetric locking, carry the penalty only).
+// Stress (dI4/dF = 2 F a0 (x) a0):
+//   P_fibre = 2 psi1 (F a0) (x) a0,  psi1 = k1 (I4 - 1) exp(k2 (I4 - 1)^2).
+// Small-strain moduli: those of the matrix (the fibres are slack at F = I).
+// Parameters for aortic leaflet tissue: docs/references.md.
+class HolzapfelGasserOgden : public MooneyRivlin {
+public:
+    HolzapfelGasserOgden(double c10, double c01, double k1, double k2, double kappa, double rho);
+    using MooneyRivlin::energyDeviatoric;
+    using MooneyRivlin::stressDeviatoric;
+    using MooneyRivlin::tangentBoundDeviatoric;
+
+    std::string name() const override { return "holzapfelGasserOgden"; }
+    bool hasFibres() const override { return true; }
+    double k1() const { return k1_; }
+    double k2() const { return k2_; }
+    // Without a direction: throw (the fibre term needs a0)
+    double energyDeviatoric(const Mat3& F) const override;
+    Mat3 stressDeviatoric(const Mat3& F) const override;
+    double energyDeviatoric(const Mat3& F, const Vec3& a0) const override;
+    Mat3 stressDeviatoric(const Mat3& F, const Vec3& a0) const override;
+    // The matrix-only part (the fibres removed), e.g. for comparisons
+    double matrixEnergyDeviatoric(const Mat3& F) const { return MooneyRivlin::energyDeviatoric(F); }
+    Mat3 matrixStressDeviatoric(const Mat3& F) const { return MooneyRivlin::stressDeviatoric(F); }
+    // Bounds: the matrix bound plus the fibre term's, for the direction a0,
+    // or (F only) for the worst direction, I4 <= lambda_max(C)
+    TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const override;
+    TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2,
+                                        const Vec3& a0) const override;
+
+private:
+    TangentBound fibreBound(const Mat3& F, const Vec3& lambda2, double I4) const;
+    double k1_, k2_;
 };
 
 }  // namespace smoothedSolid

@@ -208,6 +208,48 @@ void Smoothing::domainF(DomainKind kind, const std::vector<Mat3>& Fe, std::vecto
     for (int d = 0; d < n; ++d) Fd[d] = domainF(kind, d, Fe);
 }
 
+void Smoothing::domainDirections(DomainKind kind, const std::vector<Vec3>& a,
+                                 std::vector<Vec3>& ad) const
+{
+    if (static_cast<int>(a.size()) != mesh_->nElements()) {
+        throw Error("domainDirections: " + std::to_string(a.size()) + " directions for " +
+                    std::to_string(mesh_->nElements()) + " elements");
+    }
+    const int n = size(kind);
+    ad.resize(n);
+    // sign-aligned weighted sum over (element, weight) pairs, reference: the
+    // heaviest element (the first of equal ones)
+    auto combine = [&](auto forEach) {
+        int ref = -1;
+        double wRef = -1;
+        forEach([&](int e, double w) {
+            if (w > wRef) wRef = w, ref = e;
+        });
+        Vec3 s = Vec3::Zero();
+        forEach([&](int e, double w) { s += (a[e].dot(a[ref]) < 0 ? -w : w) * a[e]; });
+        return Vec3(s.normalized());
+    };
+    const auto& faces = mesh_->faces();
+    const auto& start = mesh_->nodeElementStart();
+    const auto& elems = mesh_->nodeElements();
+    for (int d = 0; d < n; ++d) {
+        switch (kind) {
+            case DomainKind::Element: ad[d] = a[d]; break;
+            case DomainKind::Face:
+                ad[d] = combine([&](auto f) {
+                    f(faces[d].owner, faceWeight_[d][0]);
+                    if (faces[d].neighbour >= 0) f(faces[d].neighbour, faceWeight_[d][1]);
+                });
+                break;
+            case DomainKind::Node:
+                ad[d] = combine([&](auto f) {
+                    for (int i = start[d]; i < start[d + 1]; ++i) f(elems[i], nodeWeight_[i]);
+                });
+                break;
+        }
+    }
+}
+
 void Smoothing::gatherForce(const std::vector<Mat3>& Pbar, std::vector<Vec3>& f) const
 {
     const int nn = mesh_->nNodes();

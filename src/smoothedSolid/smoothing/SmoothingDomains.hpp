@@ -89,6 +89,16 @@ public:
     const Gradients& gradients(int e) const { return elemGrad_[e]; }
     double quarterVolume(int e) const { return quarterVolume_[e]; }
 
+    // One unit direction per domain from unit directions per element (e.g.
+    // fibre directions, referential): the domain's elements in the weights
+    // of Eq. 23 (their volumes in it), each flipped if needed to point the
+    // way of the domain's heaviest element (directions are axes: a and -a
+    // are the same fibre), summed and normalised,
+    //   a_d = s_d / |s_d|,  s_d = sum_e w_e sign(a_e . a_ref) a_e.
+    // s_d . a_ref >= w_ref > 0, so s_d never vanishes.
+    void domainDirections(DomainKind kind, const std::vector<Vec3>& perElement,
+                          std::vector<Vec3>& perDomain) const;
+
     // f_I = sum_{e around I} Pbar_e g_eI (gather form, parallel)
     void gatherForce(const std::vector<Mat3>& Pbar, std::vector<Vec3>& f) const;
 

@@ -2,6 +2,7 @@
 // homogeneous large-strain stresses, and objectivity
 #include "material/Material.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -274,4 +275,229 @@ TEST(Material, MisprintedSecondInvariantIsDetected)
         EXPECT_LT(errGood, tol) << name;
         EXPECT_GT(errBad, tol) << name;
     }
+}
+
+// ---------------------------------------------------------------------------
+// Fibre-reinforced tissue (HolzapfelGasserOgden): Mooney-Rivlin matrix, one
+// exponential fibre family in the full I4, volumetric penalty. Constants of
+// the tests (not a fit; the tissue's published constants: docs/references.md)
+
+namespace {
+
+struct FibreConstants {
+    double c10 = 2000, c01 = 400, k1 = 2.0e4, k2 = 5.0, kappa = 1.0e5;
+};
+
+HolzapfelGasserOgden fibreMaterial(const FibreConstants& c = {})
+{
+    return HolzapfelGasserOgden(c.c10, c.c01, c.k1, c.k2, c.kappa, 1000.0);
+}
+
+Vec3 randomUnit(std::mt19937& rng)
+{
+    std::normal_distribution<double> n;
+    Vec3 a;
+    do a = Vec3(n(rng), n(rng), n(rng));
+    while (a.norm() < 1e-3);
+    return a.normalized();
+}
+
+// dW/dF of W(F, a0) by central differences
+Mat3 finiteDifference(const Material& m, const Mat3& F, const Vec3& a0)
+{
+    const double h = 1e-6;
+    Mat3 P;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            Mat3 Fp = F, Fm = F;
+            Fp(i, j) += h;
+            Fm(i, j) -= h;
+            P(i, j) = (m.energyDeviatoric(Fp, a0) - m.energyDeviatoric(Fm, a0)) / (2 * h);
+        }
+    }
+    return P;
+}
+
+// The fibre term's first PK stress for F = diag(l) and a0 = e_k, by hand:
+// I4 = l_k^2, P_kk = 2 psi1(I4) l_k, psi1 = k1 (I4 - 1) exp(k2 (I4 - 1)^2)
+// while I4 > 1 (Holzapfel, Gasser & Ogden 2000, one fibre family)
+double fibrePK1(const FibreConstants& c, double l)
+{
+    const double E4 = l * l - 1;
+    return E4 > 0 ? 2 * c.k1 * E4 * std::exp(c.k2 * E4 * E4) * l : 0.0;
+}
+
+}  // namespace
+
+TEST(FibreMaterial, StressIsDerivativeOfEnergy)
+{
+    const HolzapfelGasserOgden m = fibreMaterial();
+    std::mt19937 rng(7);
+    double worst = 0;
+    int stretched = 0, slack = 0;
+    for (int sample = 0; sample < 200; ++sample) {
+        const Mat3 F = randomF(rng, 0.3);
+        const Vec3 a0 = randomUnit(rng);
+        ((F * a0).squaredNorm() > 1 ? stretched : slack)++;
+        const Mat3 P = m.stressDeviatoric(F, a0);
+        const Mat3 Pfd = finiteDifference(m, F, a0);
+        worst = std::max(worst, (P - Pfd).norm() / Pfd.norm());
+    }
+    std::printf("holzapfelGasserOgden: max relative |P - dW/dF| over 200 random F, a0 (%d with "
+                "the fibre stretched, %d slack): %.2e (tolerance 1e-6)\n",
+                stretched, slack, worst);
+    EXPECT_GT(stretched, 20);
+    EXPECT_GT(slack, 20);
+    EXPECT_LT(worst, 1e-6);
+}
+
+TEST(FibreMaterial, ZeroStressInRigidRotation)
+{
+    const HolzapfelGasserOgden m = fibreMaterial();
+    const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+    std::mt19937 rng(3);
+    double worstP = 0, worstW = 0;
+    for (int k = 0; k < 20; ++k) {
+        const Vec3 a0 = randomUnit(rng);
+        worstP = std::max(worstP, m.firstPK(R, a0).norm() / m.shearModulus());
+        worstW = std::max(worstW, std::abs(m.energy(R, a0)) / m.shearModulus());
+    }
+    std::printf("holzapfelGasserOgden rotation 0.7 rad, 20 fibre directions: |P|/mu = %.2e, "
+                "|W|/mu = %.2e (tolerance 1e-12)\n", worstP, worstW);
+    EXPECT_LT(worstP, 1e-12);
+    EXPECT_LT(worstW, 1e-12);
+}
+
+// Fibres bear tension only: with the fibre shortened (I4 < 1) the stress and
+// energy are exactly those of the matrix, the Mooney-Rivlin material of the
+// same c10, c01, kappa
+TEST(FibreMaterial, FibresInactiveInCompression)
+{
+    const FibreConstants c;
+    const HolzapfelGasserOgden m = fibreMaterial(c);
+    const MooneyRivlin matrix(c.c10, c.c01, c.kappa, 1000.0);
+    std::mt19937 rng(11);
+    int n = 0;
+    double worst = 0;
+    while (n < 100) {
+        const Mat3 F = randomF(rng, 0.3);
+        const Vec3 a0 = randomUnit(rng);
+        if (!((F * a0).squaredNorm() < 1)) continue;
+        ++n;
+        worst = std::max({worst, (m.firstPK(F, a0) - matrix.firstPK(F)).cwiseAbs().maxCoeff(),
+                          std::abs(m.energy(F, a0) - matrix.energy(F))});
+    }
+    // uniaxial compression along the fibre, and stretch across it
+    const Mat3 Fc = Vec3(0.8, 1 / std::sqrt(0.8), 1 / std::sqrt(0.8)).asDiagonal();
+    worst = std::max(worst, (m.firstPK(Fc, Vec3::UnitX()) - matrix.firstPK(Fc)).cwiseAbs().maxCoeff());
+    const Mat3 Ft = Vec3(1.4, 1 / std::sqrt(1.4), 1 / std::sqrt(1.4)).asDiagonal();
+    worst = std::max(worst, (m.firstPK(Ft, Vec3::UnitY()) - matrix.firstPK(Ft)).cwiseAbs().maxCoeff());
+    std::printf("fibres shortened (I4 < 1), 100 random states + uniaxial cases: max |P - "
+                "P_MooneyRivlin| = %.1e Pa (must be 0)\n", worst);
+    EXPECT_EQ(worst, 0.0);
+}
+
+// Closed form. For F = diag(l1, l2, l3) (any J) and a0 = e_k, the first PK
+// stress is diagonal: the Mooney-Rivlin part of analyticPK1() above plus the
+// fibre term P_kk += 2 psi1(l_k^2) l_k (fibrePK1). Along the fibres: a0 = e1,
+// across: a0 = e2. Rotated, F = R diag(l) Q^T with a0 = Q e_k, P = R P_diag Q^T.
+// Then the incompressible textbook form, Cauchy
+//   sigma = 2 c10 B - 2 c01 B^-1 + 2 psi1 a (x) a - p I,  a = F a0
+// (the fibre part: sigma_f = (2/J) psi1 a (x) a, from P_f = 2 psi1 a (x) a0), whose principal
+// differences in uniaxial tension l along e1 (J = 1) are
+//   along:  sigma_1 - sigma_2 = 2 (l^2 - 1/l)(c10 + c01/l) + 2 k1 l^2 (l^2-1) e^{k2 (l^2-1)^2}
+//   across: sigma_1 - sigma_2 = 2 (l^2 - 1/l)(c10 + c01/l) + 0               (l > 1: fibre shortened)
+//           sigma_1 - sigma_2 = 2 (l^2 - 1/l)(c10 + c01/l) - 2 k1 (1/l)(1/l - 1) e^{k2 (1/l - 1)^2}
+//                                                                   (l < 1: fibre stretched to 1/sqrt l)
+TEST(FibreMaterial, ClosedFormAlongAndAcrossTheFibres)
+{
+    const double tol = 1e-10;
+    const FibreConstants c;
+    const HolzapfelGasserOgden m = fibreMaterial(c);
+    const MooneyRivlinConstants mr{c.c10, c.c01, c.kappa};
+    const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+    const Mat3 Q = Eigen::AngleAxisd(-1.1, Vec3(-2, 0.5, 1).normalized()).toRotationMatrix();
+    for (int k : {0, 1}) {
+        for (const auto& [name, l] : closedFormCases()) {
+            const PrincipalPK1 ref = analyticPK1(mr, l);
+            Vec3 Pi = ref.dev + ref.vol;
+            Pi[k] += fibrePK1(c, l[k]);
+            const Mat3 D = l.asDiagonal(), Pd = Pi.asDiagonal();
+            const Vec3 a0 = Vec3::Unit(k);
+            const double scale = Pd.cwiseAbs().maxCoeff();
+            const double err = maxAbs(m.firstPK(D, a0) - Pd) / scale;
+            const double errRot =
+                maxAbs(m.firstPK(R * D * Q.transpose(), Q * a0) - R * Pd * Q.transpose()) / scale;
+            std::printf("%-6s %-24s F = diag(%.4f %.4f %.4f): P_i code %+.10e %+.10e %+.10e, "
+                        "closed form %+.10e %+.10e %+.10e; relative error %.1e, rotated %.1e "
+                        "(tolerance %.0e)\n",
+                        k == 0 ? "along" : "across", name, l[0], l[1], l[2],
+                        m.firstPK(D, a0)(0, 0), m.firstPK(D, a0)(1, 1), m.firstPK(D, a0)(2, 2),
+                        Pi[0], Pi[1], Pi[2], err, errRot, tol);
+            EXPECT_LT(err, tol) << name << " k " << k;
+            EXPECT_LT(errRot, tol) << name << " k " << k;
+        }
+    }
+    for (const double l : {1.3, 1.15, 0.7}) {
+        const Mat3 F = Vec3(l, 1 / std::sqrt(l), 1 / std::sqrt(l)).asDiagonal();
+        const double matrix = 2 * (l * l - 1 / l) * (c.c10 + c.c01 / l);
+        const double E1 = l * l - 1, E2 = 1 / l - 1;
+        const double along = matrix + (E1 > 0 ? 2 * c.k1 * l * l * E1 * std::exp(c.k2 * E1 * E1) : 0);
+        const double across = matrix + (E2 > 0 ? -2 * c.k1 / l * E2 * std::exp(c.k2 * E2 * E2) : 0);
+        const Mat3 sa = m.cauchy(F, Vec3::UnitX()), sc = m.cauchy(F, Vec3::UnitY());
+        const double errA = std::abs((sa(0, 0) - sa(1, 1)) / along - 1);
+        const double errC = std::abs((sc(0, 0) - sc(1, 1)) / across - 1);
+        std::printf("incompressible uniaxial l = %.2f: along sigma1-sigma2 %.10e (textbook %.10e, "
+                    "rel %.1e); across %.10e (textbook %.10e, rel %.1e); tolerance %.0e\n",
+                    l, sa(0, 0) - sa(1, 1), along, errA, sc(0, 0) - sc(1, 1), across, errC, tol);
+        EXPECT_LT(errA, tol) << l;
+        EXPECT_LT(errC, tol) << l;
+    }
+}
+
+// The tangent bounds (Material.hpp): Q(G) = (1/J) dF : dP/dF : dF, dF = G F,
+// by central differences of the deviatoric stress, never above
+// shear |G|^2 + bulk (tr G)^2, with the fibre direction (a0) and without it
+// (every direction), over random states (fibres stretched to 1.6x) and G
+TEST(FibreMaterial, TangentBoundsHold)
+{
+    const HolzapfelGasserOgden m = fibreMaterial();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> uni(-1, 1);
+    double worstDir = 0, worstFree = 0;
+    for (int sample = 0; sample < 300; ++sample) {
+        const Vec3 a0 = randomUnit(rng);
+        // a stretch s along a0 on top of a random F
+        const double s = 1.0 + 0.6 * (uni(rng) + 1) / 2;
+        const Mat3 F = randomF(rng, 0.15) * (Mat3::Identity() + (s - 1) * a0 * a0.transpose());
+        Mat3 G;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) G(i, j) = uni(rng);
+        const Mat3 dF = G * F;
+        const double h = 1e-6;
+        const Mat3 dP = (m.stressDeviatoric(F + h * dF, a0) - m.stressDeviatoric(F - h * dF, a0)) / (2 * h);
+        const double Q = (dP.array() * dF.array()).sum() / F.determinant();
+        Eigen::SelfAdjointEigenSolver<Mat3> es(F.transpose() * F);
+        const Vec3 l2 = es.eigenvalues();
+        auto value = [&](const Material::TangentBound& t) {
+            return t.shear * G.squaredNorm() + t.bulk * G.trace() * G.trace();
+        };
+        const double bDir = value(m.tangentBoundDeviatoric(F, l2, a0));
+        const double bFree = value(m.tangentBoundDeviatoric(F, l2));
+        worstDir = std::max(worstDir, Q / bDir);
+        worstFree = std::max(worstFree, Q / bFree);
+    }
+    std::printf("tangent bound, 300 random states (fibre stretch up to 1.6) and G: max Q/bound "
+                "with a0 %.3f, without a0 %.3f (must not exceed 1)\n", worstDir, worstFree);
+    EXPECT_LE(worstDir, 1.0 + 1e-6);
+    EXPECT_LE(worstFree, 1.0 + 1e-6);
+}
+
+TEST(FibreMaterial, BadConstantsAndMissingDirectionThrow)
+{
+    EXPECT_THROW(HolzapfelGasserOgden(1000, 0, 0.0, 5, 1e5, 1000), Error);
+    EXPECT_THROW(HolzapfelGasserOgden(1000, 0, 1e4, -1, 1e5, 1000), Error);
+    const HolzapfelGasserOgden m = fibreMaterial();
+    EXPECT_THROW(m.firstPK(Mat3::Identity()), Error);
+    EXPECT_THROW(m.energy(Mat3::Identity()), Error);
 }

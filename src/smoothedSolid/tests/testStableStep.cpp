@@ -232,3 +232,62 @@ TEST(StableStep, BoundFollowsScheduleAndBadIntervalsThrow)
                 solid.stableStepInterval(), ExplicitSolid::kMaxStableStepInterval);
     EXPECT_EQ(solid.stableStepInterval(), ExplicitSolid::kMaxStableStepInterval);
 }
+
+// ---------------------------------------------------------------------------
+// The fibre-reinforced tissue (HolzapfelGasserOgden): the thin slab with its
+// fibres along x, stretched 1.3x and 1.5x in both in-plane directions (the
+// fibres carry the stretch), and stretched along y only (isochoric, the
+// fibres shortened: the bound without the direction assumes them along the
+// largest stretch, so it is loose there). The bound uses the material's
+// direction-free tangent bound (StableStepBound evaluates Material::
+// tangentBoundDeviatoric(F, lambda2)).
+
+namespace {
+
+std::shared_ptr<Material> fibreTissue(double nu)
+{
+    // matrix c10 = kMu/2 (neo-Hookean), fibres k1 = 10 mu, k2 = 5
+    const double K = 2 * kMu * (1 + nu) / (3 * (1 - 2 * nu));
+    return std::make_shared<HolzapfelGasserOgden>(kMu / 2, 0.0, 10 * kMu, 5.0, K, kRho);
+}
+
+std::vector<Vec3> stretchedAlongY(const TetMesh& mesh, double s)
+{
+    std::vector<Vec3> u(mesh.nNodes());
+    const Vec3 c(0.005, 0.005, 0.00015);
+    for (int i = 0; i < mesh.nNodes(); ++i) {
+        const Vec3 d = mesh.coordinates()[i] - c;
+        u[i] = Vec3((1 / std::sqrt(s) - 1) * d.x(), (s - 1) * d.y(), (1 / std::sqrt(s) - 1) * d.z());
+    }
+    return u;
+}
+
+}  // namespace
+
+TEST(StableStep, FibreTissueBoundBelowCritical)
+{
+    int cases = 0;
+    for (Formulation form : kAll) {
+        for (double nu : {0.45, 0.499}) {
+            if (nu > 0.45 && form != Formulation::Selective) continue;
+            for (double s : {1.0, 1.3, 1.5}) {
+                for (bool alongY : {false, true}) {
+                    if (alongY && s == 1.0) continue;
+                    ExplicitSolid solid(thinSlab(), fibreTissue(nu), {form, 1.0, 0.0});
+                    solid.setFibreDirections(std::vector<Vec3>(thinSlab().nElements(), Vec3::UnitX()));
+                    const auto u = alongY ? stretchedAlongY(thinSlab(), s) : stretched(thinSlab(), s);
+                    const double bound = solid.stableTimeStep(u);
+                    const CriticalStep c = criticalTimeStep(solid, u);
+                    std::printf("fibre tissue, slab %s %.1f %-10s nu %.3f: bound %.4e s, critical "
+                                "%.4e s (Lanczos, %d its, last change %.1e): bound/critical %.3f\n",
+                                alongY ? "stretched along y (across)" : "stretched biaxially", s,
+                                kNames[int(form)], nu, bound, c.dt, c.iterations, c.change,
+                                bound / c.dt);
+                    EXPECT_LE(bound, c.dt) << kNames[int(form)] << " s " << s << " nu " << nu;
+                    ++cases;
+                }
+            }
+        }
+    }
+    std::printf("fibre tissue: %d cases, bound <= critical required in each\n", cases);
+}
