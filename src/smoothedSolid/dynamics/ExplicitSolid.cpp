@@ -181,6 +181,13 @@ void ExplicitSolid::setFibreDirections(std::vector<Vec3> a0)
     }
     fibreElement_ = std::move(a0);
     fibreDomain_ = std::move(domain);
+    // the bound so far held for any direction; now for these
+    std::vector<const std::vector<Vec3>*> perUse;
+    for (std::size_t k = 0; k < uses_.size(); ++k) perUse.push_back(fibres(k));
+    bound_.setFibres(perUse);
+    deformationGradients(u_);
+    omega2Max_ = 0;
+    refreshBound();
 }
 
 const std::vector<Vec3>* ExplicitSolid::fibres(std::size_t k) const

@@ -24,6 +24,7 @@ StableStepBound::StableStepBound(const Smoothing& smoothing, Formulation formula
         u.volume = sd.volume;
         u.entryStart = sd.start;
         u.grad = sd.grad;
+        u.node = sd.node;
         u.N0.assign(nd, Mat3::Zero());
         u.start.assign(nn + 1, 0);
         // Initial mass partition: each node's mass is shared among the
@@ -128,6 +129,86 @@ void StableStepBound::balance(const Material& material, int iterations)
     updateN0();
 }
 
+// The fibre operator's weights: initially each node's mass shared in
+// proportion to V_d c_dI^2, then balanced as in balance() for
+// sum_d V_d (sum_I u_I c_dI)^2 alone (rho_d = V_d sum_I c_dI^2 / wf_dI)
+void StableStepBound::setFibres(const std::vector<const std::vector<Vec3>*>& a0)
+{
+    const int nn = static_cast<int>(invMass_.size());
+    for (std::size_t k = 0; k < uses_.size(); ++k) {
+        Use& u = uses_[k];
+        const int nd = static_cast<int>(u.volume.size());
+        if (k >= a0.size() || !a0[k]) {
+            u.fibre.clear(), u.fibreWeight.clear(), u.fibreC.clear(), u.fibreNodeWeight.clear();
+            continue;
+        }
+        u.fibre = *a0[k];
+        std::vector<double> c(u.grad.size()), total(nn, 0.0);
+        for (int d = 0; d < nd; ++d) {
+            for (int e = u.entryStart[d]; e < u.entryStart[d + 1]; ++e) {
+                c[e] = u.grad[e].dot(u.fibre[d]);
+                total[u.node[e]] += u.volume[d] * c[e] * c[e];
+            }
+        }
+        u.fibreWeight.assign(u.grad.size(), 0.0);
+        for (int d = 0; d < nd; ++d) {
+            for (int e = u.entryStart[d]; e < u.entryStart[d + 1]; ++e) {
+                const int I = u.node[e];
+                const double share = u.volume[d] * c[e] * c[e];
+                if (share > 0) u.fibreWeight[e] = share / (total[I] * invMass_[I]);
+            }
+        }
+        u.fibreC.assign(nd, 0.0);
+        u.fibreNodeWeight.assign(u.entry.size(), 0.0);
+        u.rhoF.assign(nd, 0.0);
+        auto update = [&]() {
+            for (int d = 0; d < nd; ++d) {
+                double sum = 0;
+                for (int e = u.entryStart[d]; e < u.entryStart[d + 1]; ++e) {
+                    if (u.fibreWeight[e] > 0) sum += c[e] * c[e] / u.fibreWeight[e];
+                }
+                u.fibreC[d] = sum;
+            }
+            for (int i = 0; i < nn; ++i) {
+                for (int j = u.start[i]; j < u.start[i + 1]; ++j) {
+                    u.fibreNodeWeight[j] = u.fibreWeight[u.entry[j]] * invMass_[i];
+                }
+            }
+        };
+        auto omegas = [&](std::vector<double>& w2) {
+            w2.assign(nn, 0.0);
+            double m = 0;
+            for (int i = 0; i < nn; ++i) {
+                for (int j = u.start[i]; j < u.start[i + 1]; ++j) {
+                    w2[i] += u.volume[u.domain[j]] * u.fibreC[u.domain[j]] * u.fibreNodeWeight[j];
+                }
+                m = std::max(m, w2[i]);
+            }
+            return m;
+        };
+        update();
+        std::vector<double> w2;
+        double best = omegas(w2);
+        std::vector<double> bestWeight = u.fibreWeight;
+        for (int it = 0; it < kBalanceIterations && best > 0; ++it) {
+            for (int i = 0; i < nn; ++i) {
+                if (!(w2[i] > 0)) continue;
+                const double scale = 1.0 / std::sqrt(w2[i] / best);
+                for (int j = u.start[i]; j < u.start[i + 1]; ++j) u.fibreWeight[u.entry[j]] *= scale;
+            }
+            update();
+            const double m = omegas(w2);
+            if (!(m < best)) break;
+            const bool converged = m > 0.999 * best;
+            best = m;
+            bestWeight = u.fibreWeight;
+            if (converged) break;
+        }
+        u.fibreWeight = bestWeight;
+        update();
+    }
+}
+
 double StableStepBound::evaluate(const Material& material,
                                  const std::vector<const std::vector<Mat3>*>& Fd,
                                  std::vector<double>& omega2) const
@@ -139,6 +220,7 @@ double StableStepBound::evaluate(const Material& material,
         const std::vector<Mat3>& F = *Fd[k];
         const int nd = static_cast<int>(u.rhoD.size());
         const StressPart part = u.use.part;
+        const std::vector<Vec3>* fibre = u.fibre.empty() ? nullptr : &u.fibre;
 #pragma omp parallel for schedule(static)
         for (int d = 0; d < nd; ++d) {
             const Mat3& Fdd = F[d];
@@ -152,8 +234,9 @@ double StableStepBound::evaluate(const Material& material,
             const Vec3 lambda2 = es.eigenvalues();
             Material::TangentBound t;
             if (part != StressPart::Volumetric) {
-                const auto b = material.tangentBoundDeviatoric(Fdd, lambda2);
-                t.shear += b.shear, t.bulk += b.bulk;
+                const auto b = fibre ? material.tangentBoundDeviatoric(Fdd, lambda2, (*fibre)[d])
+                                     : material.tangentBoundDeviatoric(Fdd, lambda2);
+                t.shear += b.shear, t.bulk += b.bulk, t.fibre += b.fibre;
             }
             if (part != StressPart::Deviatoric) {
                 const auto b = material.tangentBoundVolumetric(Fdd, lambda2);
@@ -169,11 +252,15 @@ double StableStepBound::evaluate(const Material& material,
             const double dev2 = N.squaredNorm() - trN * trN / 3.0;
             const double nMax = trN / 3.0 + std::sqrt(std::max(0.0, 2.0 / 3.0 * dev2));
             u.rhoD[d] = J * u.volume[d] * (t.shear * nMax + t.bulk * trN);
+            if (fibre) u.rhoF[d] = J * u.volume[d] * t.fibre * u.fibreC[d];
         }
 #pragma omp parallel for schedule(static)
         for (int i = 0; i < nn; ++i) {
             double s = 0;
             for (int j = u.start[i]; j < u.start[i + 1]; ++j) s += u.rhoD[u.domain[j]] * u.nodeWeight[j];
+            if (!u.fibre.empty()) {
+                for (int j = u.start[i]; j < u.start[i + 1]; ++j) s += u.rhoF[u.domain[j]] * u.fibreNodeWeight[j];
+            }
             omega2[i] += s;
         }
     }

@@ -18,7 +18,17 @@
 // so that, with rho_d = J_d V_d (s_d lambda_max(N_d) + k_d tr(N_d)),
 //   u.K_T u <= sum_I |u_I|^2 sum_d rho_d w_dI = sum_I m_I omega_I^2 |u_I|^2,
 //   omega_I^2 = (1/m_I) sum_{d around I} rho_d w_dI,
-// and omega_max^2 <= max_I omega_I^2 (an element-by-element bound in the
+// A fibre-reinforced material adds fibre_d |G_d a|^2, a = F_d a0_d the
+// current fibre (Material::TangentBound::fibre); G_d a = sum_I u_I (b_dI . a0_d)
+// since bt_dI . F_d a0 = b_dI . a0, so by the same Cauchy-Schwarz step
+//   |G_d a|^2 <= (a0_d . N0_d a0_d) sum_I w_dI |u_I|^2,
+// and rho_d gains J_d V_d fibre_d (a0_d . N0_d a0_d). The bound is a sum of
+// terms, each bounded by its own Cauchy-Schwarz step, so the fibre term
+// takes its own weights wf_dI, balanced for the fibre operator
+// sum_d V_d (sum_I u_I c_dI)^2, c_dI = b_dI . a0_d (the fibres stiffen a
+// different, one-dimensional pattern than the matrix): it adds
+// J_d V_d fibre_d (sum_I c_dI^2 / wf_dI) wf_dI / m_I to omega_I^2.
+// Then omega_max^2 <= max_I omega_I^2 (an element-by-element bound in the
 // manner of Irons' theorem, Hughes, The Finite Element Method, 1987,
 // Sect. 9.3). The selective scheme adds its face (deviatoric) and node
 // (volumetric) sums. The bound follows the deformation: an element that
@@ -50,6 +60,11 @@ public:
     double evaluate(const Material& material, const std::vector<const std::vector<Mat3>*>& Fd,
                     std::vector<double>& omega2) const;
 
+    // Reference fibre directions of each use's domains (null: none, e.g. the
+    // volumetric part); until set, a fibre material's bound holds for any
+    // direction. The fibre term gets its own weights (below).
+    void setFibres(const std::vector<const std::vector<Vec3>*>& a0);
+
 private:
     struct Use {
         DomainUse use;
@@ -57,11 +72,17 @@ private:
         std::vector<Mat3> N0;        // sum_I b_dI b_dI^T / w_dI
         // domain entries (as SmoothingDomains): b_dI and w_dI
         std::vector<int> entryStart;
+        std::vector<int> node;
         std::vector<Vec3> grad;
         std::vector<double> weight;
         // per node I: its entries and their domains (CSR)
         std::vector<int> start, entry, domain;
         std::vector<double> nodeWeight;  // w_dI / m_I in CSR order
+        // fibre term: directions per domain, weights per entry, sum c^2/wf
+        // per domain, wf_dI / m_I in CSR order (empty without fibres)
+        std::vector<Vec3> fibre;
+        std::vector<double> fibreWeight, fibreC, fibreNodeWeight;
+        mutable std::vector<double> rhoF;
         mutable std::vector<double> rhoD;  // rho_d of the last evaluation
     };
     void updateN0();

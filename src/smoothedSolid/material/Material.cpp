@@ -271,29 +271,31 @@ Mat3 HolzapfelGasserOgden::stressDeviatoric(const Mat3& F, const Vec3& a0) const
 // bt_dI = F^-T b_dI, so bt_dI . a = b_dI . a0),
 //   |G_d a|^2 <= (a0 . N0_d a0) sum_I w_dI |u_I|^2,
 // independent of the current shape of the domain: a per-domain fibre
-// direction in StableStepBound (not wired yet).
+// direction in StableStepBound: with a0 the bound below returns this third
+// coefficient (TangentBound::fibre), without it the |G|_F^2 form.
 Material::TangentBound HolzapfelGasserOgden::fibreBound(const Mat3& F, const Vec3& lambda2,
-                                                        double I4) const
+                                                        double I4, bool directional) const
 {
     TangentBound t = MooneyRivlin::tangentBoundDeviatoric(F, lambda2);
     const double I4s = std::max(I4, 1.0), E4 = I4s - 1.0;
     const double e = std::exp(k2_ * E4 * E4);
     const double psi1 = k1_ * E4 * e, psi2 = k1_ * (1.0 + 2.0 * k2_ * E4 * E4) * e;
-    t.shear += (4.0 * psi2 * I4s * I4s + 2.0 * psi1 * I4s) / F.determinant();
+    if (directional) t.fibre = (4.0 * psi2 * I4s + 2.0 * psi1) / F.determinant();
+    else t.shear += (4.0 * psi2 * I4s * I4s + 2.0 * psi1 * I4s) / F.determinant();
     return t;
 }
 
 Material::TangentBound HolzapfelGasserOgden::tangentBoundDeviatoric(const Mat3& F,
                                                                     const Vec3& lambda2) const
 {
-    return fibreBound(F, lambda2, lambda2.maxCoeff());
+    return fibreBound(F, lambda2, lambda2.maxCoeff(), false);
 }
 
 Material::TangentBound HolzapfelGasserOgden::tangentBoundDeviatoric(const Mat3& F,
                                                                     const Vec3& lambda2,
                                                                     const Vec3& a0) const
 {
-    return fibreBound(F, lambda2, (F * a0).squaredNorm());
+    return fibreBound(F, lambda2, (F * a0).squaredNorm(), true);
 }
 
 }  // namespace smoothedSolid

@@ -49,8 +49,11 @@ public:
     // At F = I an isotropic material gives shear = 2 mu, bulk = K - 2 mu/3
     // (the deviatoric part: 2 mu, 0; the volumetric part: 0, K).
     // lambda2: the eigenvalues of C = F^T F, ascending (computed by the caller).
+    // A fibre-reinforced material given its direction a0 adds a third
+    // term, fibre |G a|^2 with a = F a0 the current fibre (it stiffens only
+    // the gradient along the fibre; see HolzapfelGasserOgden).
     struct TangentBound {
-        double shear = 0, bulk = 0;
+        double shear = 0, bulk = 0, fibre = 0;
     };
     virtual TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const = 0;
     virtual TangentBound tangentBoundVolumetric(const Mat3& F, const Vec3& lambda2) const = 0;
@@ -198,14 +201,15 @@ public:
     // The matrix-only part (the fibres removed), e.g. for comparisons
     double matrixEnergyDeviatoric(const Mat3& F) const { return MooneyRivlin::energyDeviatoric(F); }
     Mat3 matrixStressDeviatoric(const Mat3& F) const { return MooneyRivlin::stressDeviatoric(F); }
-    // Bounds: the matrix bound plus the fibre term's, for the direction a0,
-    // or (F only) for the worst direction, I4 <= lambda_max(C)
+    // Bounds: the matrix bound plus the fibre term's; for the direction a0
+    // as TangentBound::fibre (of |G F a0|^2), or (F only) in the shear
+    // coefficient for the worst direction, I4 <= lambda_max(C)
     TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2) const override;
     TangentBound tangentBoundDeviatoric(const Mat3& F, const Vec3& lambda2,
                                         const Vec3& a0) const override;
 
 private:
-    TangentBound fibreBound(const Mat3& F, const Vec3& lambda2, double I4) const;
+    TangentBound fibreBound(const Mat3& F, const Vec3& lambda2, double I4, bool directional) const;
     double k1_, k2_;
 };
 

@@ -457,8 +457,8 @@ TEST(FibreMaterial, ClosedFormAlongAndAcrossTheFibres)
 
 // The tangent bounds (Material.hpp): Q(G) = (1/J) dF : dP/dF : dF, dF = G F,
 // by central differences of the deviatoric stress, never above
-// shear |G|^2 + bulk (tr G)^2, with the fibre direction (a0) and without it
-// (every direction), over random states (fibres stretched to 1.6x) and G
+// shear |G|^2 + bulk (tr G)^2 (+ fibre |G F a0|^2 with the fibre direction
+// a0), with a0 and without it (every direction), over random states (fibres stretched to 1.6x) and G
 TEST(FibreMaterial, TangentBoundsHold)
 {
     const HolzapfelGasserOgden m = fibreMaterial();
@@ -480,7 +480,8 @@ TEST(FibreMaterial, TangentBoundsHold)
         Eigen::SelfAdjointEigenSolver<Mat3> es(F.transpose() * F);
         const Vec3 l2 = es.eigenvalues();
         auto value = [&](const Material::TangentBound& t) {
-            return t.shear * G.squaredNorm() + t.bulk * G.trace() * G.trace();
+            return t.shear * G.squaredNorm() + t.bulk * G.trace() * G.trace() +
+                   t.fibre * (G * F * a0).squaredNorm();
         };
         const double bDir = value(m.tangentBoundDeviatoric(F, l2, a0));
         const double bFree = value(m.tangentBoundDeviatoric(F, l2));
