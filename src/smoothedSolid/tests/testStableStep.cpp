@@ -130,10 +130,10 @@ TEST(StableStep, SelectiveGmshDefaultEstimateNotWasteful)
         const double est = solid.stableTimeStep();
         const CriticalStep c = criticalTimeStep(solid, zero);
         std::printf("gmsh tets, selective, nu %.3f: default estimate (safety %.2f) %.4e s = %.3f of "
-                    "the critical %.4e s (tolerance: 0.55 to 1)\n",
+                    "the critical %.4e s (tolerance: 0.6 to 1, issue target)\n",
                     nu, safety, est, est / c.dt, c.dt);
         EXPECT_LE(est, c.dt);
-        EXPECT_GE(est / c.dt, 0.55);
+        EXPECT_GE(est / c.dt, 0.6);
     }
 }
 
