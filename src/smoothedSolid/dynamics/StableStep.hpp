@@ -52,7 +52,7 @@ public:
     StableStepBound(const Smoothing& smoothing, Formulation formulation,
                     const std::vector<double>& mass, const Material& material,
                     int balanceIterations = kBalanceIterations);
-    static constexpr int kBalanceIterations = 30;
+    static constexpr int kBalanceIterations = 60;
 
     // omega_I^2 per node for the domain deformation gradients Fd (one array
     // per DomainUse of the formulation, in the order of domainUses());
