@@ -14,44 +14,86 @@ Include "valveParameters.geo";
 
 If (!Exists(nEdge)) nEdge = 40; EndIf   // points along attachment and free edge
 
-// Leaflet 1 (centre at angle 0); the commissure ends C- (y < 0) and C+
+// Leaflet 1 (centre at angle 0), parametrised by u in [-1, 1] from the
+// commissure end C- (y < 0) to C+ and v in [0, 1] from the attachment to the
+// free edge:
+//   attachment  A(u): phi = u Phi, z = z_a(phi), on the cone r_ns(z);
+//   free edge   F(u): y = u y_C, x = d_V + k_F sqrt(y^2 + eps_r^2) (see
+//               valveParameters.geo), height from z_M at M to z_C at C;
+//   between     the quadratic Bezier A - Q - F, Q the chord's midpoint moved
+//               by belly * |AF| perpendicular to the chord in the vertical
+//               plane through A and F, downwards (towards the ventricle). In
+//               a top view it runs straight from A to F, so the leaflet never
+//               reaches beyond its free edge towards its neighbours.
+// The mid-surface is the OpenCASCADE filling of the curve loop attachment +
+// free edge through the Bezier points of an inner (u, v) grid; at u = 0 the
+// Bezier is the mid-line whose length is L_h (valveParameters.geo).
+Macro AttachmentPoint   // in u, out ax, ay, az
+    phi = u*Phi;
+    az = h*(1 - Cos(1.5*phi));
+    ar = r_b + (r_c - r_b)*az/h;
+    ax = ar*Cos(phi); ay = ar*Sin(phi);
+Return
+sC = Sqrt(y_C^2 + eps_r^2) - eps_r;
+Macro FreeEdgePoint     // in u, out fx, fy, fz
+    fy = u*y_C;
+    fs = (Sqrt(fy^2 + eps_r^2) - eps_r)/sC;
+    fx = d_V + k_F*Sqrt(fy^2 + eps_r^2);
+    fz = z_M + (z_C - z_M)*fs;
+Return
+Macro SurfacePoint      // in u, v, out sx, sy, sz
+    Call AttachmentPoint;
+    Call FreeEdgePoint;
+    cx = fx - ax; cy = fy - ay; cz = fz - az;
+    cl = Sqrt(cx^2 + cy^2 + cz^2);
+    // downward normal of the chord in its vertical plane: -(e_z - (e_z.c) c)
+    px = cz*cx/cl^2; py = cz*cy/cl^2; pz = cz*cz/cl^2 - 1;
+    pl = Sqrt(px^2 + py^2 + pz^2);
+    qx = 0.5*(ax + fx) + belly*cl*px/pl;
+    qy = 0.5*(ay + fy) + belly*cl*py/pl;
+    qz = 0.5*(az + fz) + belly*cl*pz/pl;
+    sx = (1-v)^2*ax + 2*v*(1-v)*qx + v^2*fx;
+    sy = (1-v)^2*ay + 2*v*(1-v)*qy + v^2*fy;
+    sz = (1-v)^2*az + 2*v*(1-v)*qz + v^2*fz;
+Return
+
 pCm = newp; Point(pCm) = {x_C, -y_C, z_C};
 pCp = newp; Point(pCp) = {x_C, y_C, z_C};
 
-// attachment, C- -> nadir -> C+, on the cone r_ns(z) = r_b + (r_c - r_b) z/h
+// attachment, C- -> nadir -> C+
 pts[] = {pCm};
 For j In {1:nEdge-1}
-    phi = Phi*(-1 + 2*j/nEdge);
-    za = h*(1 - Cos(1.5*phi));
-    ra = r_b + (r_c - r_b)*za/h;
-    p = newp; Point(p) = {ra*Cos(phi), ra*Sin(phi), za};
+    u = -1 + 2*j/nEdge;
+    Call AttachmentPoint;
+    p = newp; Point(p) = {ax, ay, az};
     pts[] += {p};
 EndFor
 pts[] += {pCp};
 attach = newc; Spline(attach) = pts[];
 
-// free edge, C+ -> M -> C-: straight in a top view, parallel to the
-// neighbours' free edges at gap/2 from the line of symmetry between them,
-// rounded over eps_r near the centre M = (d_M, 0, z_M)
-sC = Sqrt(y_C^2 + eps_r^2) - eps_r;
+// free edge, C+ -> M -> C-
 pts[] = {pCp};
 For j In {1:nEdge-1}
-    y = y_C*(1 - 2*j/nEdge);
-    s = (Sqrt(y^2 + eps_r^2) - eps_r)/sC;
-    p = newp; Point(p) = {d_M + (x_C - d_M)*s, y, z_M + (z_C - z_M)*s};
+    u = 1 - 2*j/nEdge;
+    Call FreeEdgePoint;
+    p = newp; Point(p) = {fx, fy, fz};
     pts[] += {p};
 EndFor
 pts[] += {pCm};
 free = newc; Spline(free) = pts[];
 
-// mid-line (the filling passes through its inner points): the quadratic
-// Bezier from the nadir N = (r_b, 0, 0) over Q = (q_r, 0, q_z) to M
+// inner points the filling passes through
+If (!Exists(nFillU)) nFillU = 12; EndIf
+If (!Exists(nFillV)) nFillV = 6; EndIf
 mid[] = {};
-For j In {1:7}
-    t = j/8;
-    p = newp;
-    Point(p) = {(1-t)^2*r_b + 2*t*(1-t)*q_r + t^2*d_M, 0, 2*t*(1-t)*q_z + t^2*z_M};
-    mid[] += {p};
+For i In {1:nFillU-1}
+    u = -1 + 2*i/nFillU;
+    For j In {1:nFillV-1}
+        v = j/nFillV;
+        Call SurfacePoint;
+        p = newp; Point(p) = {sx, sy, sz};
+        mid[] += {p};
+    EndFor
 EndFor
 
 loop = newll; Curve Loop(loop) = {attach, free};

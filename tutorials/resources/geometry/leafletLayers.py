@@ -13,6 +13,11 @@ tetrahedron lies on one of the N+1 offset surfaces; N = 2 (the default) is
 the paper's two layers, with the nodes on the ventricular face, the
 mid-surface and the aortic face.
 
+Beside out.msh, out.circumferential holds each tetrahedron's circumferential
+direction (e_theta at its triangle's centre projected onto the mid-surface's
+tangent plane, unit, counter-clockwise about +z; the fibre direction of
+leaflet tissue), one line per tetrahedron in the order of out.msh.
+
 Written as gmsh msh 2.2 in metres (the geometry is in mm) with the physical
 groups (read by smoothedSolid's TetMesh::fromGmsh):
     volumes   leaflet1, leaflet2, leaflet3
@@ -121,6 +126,7 @@ def main():
 
     allX = []
     tets = []           # (tet node ids, leaflet)
+    circumferential = []  # unit vector per tet
     faces = {}          # physical surface name -> list of triangles
     offset = 0
     for k in (1, 2, 3):
@@ -141,13 +147,23 @@ def main():
         def node(level, j):
             return offset + level * nm + j
 
-        for t in tris:
+        # circumferential direction of each triangle: e_theta at its centre,
+        # in the tangent plane of the mid-surface
+        centre = X[tris].mean(axis=1)
+        normal = n[tris].mean(axis=1)
+        normal /= np.linalg.norm(normal, axis=1)[:, None]
+        etheta = np.stack([-centre[:, 1], centre[:, 0], np.zeros(len(tris))], axis=1)
+        etheta -= np.einsum("ij,ij->i", etheta, normal)[:, None] * normal
+        etheta /= np.linalg.norm(etheta, axis=1)[:, None]
+
+        for t, e in zip(tris, etheta):
             a, b, c = sorted(t)
             for l in range(layers):
                 A, B, C = (node(l, a), node(l, b), node(l, c))
                 A1, B1, C1 = (node(l + 1, a), node(l + 1, b), node(l + 1, c))
                 for tet in ((A, B, C, C1), (A, B, B1, C1), (A, A1, B1, C1)):
                     tets.append((tet, k))
+                    circumferential.append(e)
 
         faces["ventricular%d" % k] = [[node(0, v) for v in t[[0, 2, 1]]] for t in tris]
         faces["aortic%d" % k] = [[node(layers, v) for v in t] for t in tris]
@@ -178,6 +194,13 @@ def main():
 
     gmsh.finalize()
     writeMsh22(out, X * SCALE, T, part, faces)
+    circ = os.path.splitext(out)[0] + ".circumferential"
+    with open(circ, "w") as f:
+        f.write("# circumferential direction (unit) of each tetrahedron of %s, in the\n"
+                "# order of its $Elements (leaflet1, leaflet2, leaflet3): ex ey ez\n"
+                % os.path.basename(out))
+        for d in circumferential:
+            f.write("%.9g %.9g %.9g\n" % tuple(d))
     print("leafletLayers.py: wrote %s: %d tetrahedra, %d nodes, %d layers"
           % (out, len(T), len(X), layers))
 
@@ -207,6 +230,7 @@ def writeMsh22(fileName, X, T, part, faces):
             e += 1
             f.write("%d 4 2 %d %d %d %d %d %d\n" % (e, k, k, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1))
         f.write("$EndElements\n")
+
 
 
 if __name__ == "__main__":

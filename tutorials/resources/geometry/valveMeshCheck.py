@@ -3,7 +3,8 @@
 
     valveMeshCheck.py quality leaflets.msh
         tetrahedra, nodes, smallest height, largest aspect ratio, smallest
-        volume of the leaflets; fails if any volume is not positive
+        volume of the leaflets, smallest distance between the leaflets'
+        nodes; fails if any volume is not positive
     valveMeshCheck.py layers leaflets.msh [-setnumber name value ...]
         exactly two tetrahedron layers through the thickness everywhere:
         every node lies on the CAD mid-surface of its leaflet or at L_t/2 on
@@ -94,6 +95,16 @@ def quality(leafletFile):
     print("  largest aspect      %.4g  (longest edge / smallest height), median %.3g"
           % (aspect.max(), np.median(aspect)))
     print("  smallest volume     %.4g mm3, largest %.4g mm3" % (vol.min(), vol.max()))
+    # clearance between the leaflets (closed valve: about the parameter gap)
+    _, part = physicalCells(m, "tetra")
+    nodes = [np.unique(T[part == physicalTag(m, "leaflet%d" % k)]) for k in (1, 2, 3)]
+    for a, b in ((0, 1), (1, 2), (0, 2)):
+        A, B = X[nodes[a]], X[nodes[b]]
+        closest = np.inf
+        for i in range(0, len(A), 256):
+            d2 = np.sum((A[i:i + 256, None, :] - B[None, :, :]) ** 2, axis=2)
+            closest = min(closest, float(np.sqrt(d2.min())))
+        print("  leaflets %d-%d        smallest node distance %.4g mm" % (a + 1, b + 1, closest))
     nonPositive = int(np.sum(vol <= 0))
     if nonPositive:
         fail("%d tetrahedra of %s have non-positive volume" % (nonPositive, leafletFile))

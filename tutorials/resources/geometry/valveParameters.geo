@@ -21,7 +21,8 @@
 //   L_h    leaflet height: length of the leaflet's mid-line, from the nadir
 //          of its attachment to the valve centre
 //   L_t    leaflet thickness
-//   gap    gap between the free edges of neighbouring closed leaflets
+//   gap    clear gap between neighbouring closed leaflets (between their
+//          faces; their mid-surfaces are gap + L_t apart)
 //   belly  sag of the leaflet's mid-line towards the ventricle, as a
 //          fraction of its chord (0: a ruled, flat-bellied leaflet)
 //   L_in   length of the inlet (ventricular) extension, radius r_b
@@ -85,7 +86,7 @@ If (belly < 0 || belly > 0.4)
     Error("valveParameters.geo: belly = %g must lie in [0, 0.4]", belly);
     Abort;
 EndIf
-If (L_t >= gap + 0.5*r_c || L_t > 0.1*h)
+If (L_t > 0.1*h)
     General.AbortOnError = 4; // exit(1) at the error
     Error("valveParameters.geo: L_t = %g is too thick for this valve (at most 0.1 h = %g)", L_t, 0.1*h);
     Abort;
@@ -117,23 +118,28 @@ EndIf
 //------------------------------------------------------------------------------
 // Leaflets (closed), in the frame of leaflet 1 (centre at phi = 0):
 //   attachment  z_a(phi), radius r_ns(z_a), for |phi| <= Phi = 60 deg - dPhi,
-//               dPhi chosen so that neighbouring leaflets are gap apart at
-//               the commissures;
-//   free edge   in a top view two straight lines from the commissure ends C
-//               to the leaflet's centre point M = (d, 0), d = gap/2/sin(60),
-//               rounded over eps_r near M; height linear from z_C at C to
-//               z_M at M;
+//               dPhi chosen so that neighbouring mid-surfaces are gap + L_t
+//               apart at//               the commissures;
+//   free edge   in a top view the hyperbola x = d_V + k sqrt(y^2 + eps_r^2)
+//               through the commissure ends C: nearly straight, and
+//               parallel to the line of symmetry between neighbouring
+//               leaflets at (gap + L_t)/2 from it (d_V = (gap + L_t)/2/
+//               sin(60)), rounded near the leaflet's centre point
+//               M = (d_M, 0, z_M) and never closer to that line; height
+//               from z_M at M to z_C at C;
 //   mid-line    (phi = 0) the quadratic Bezier from the nadir N = (r_b, 0, 0)
 //               to M with its control point belly * chord below the chord;
 //               z_M is chosen so that its length is L_h.
-dPhi = Asin(0.5*gap/r_c);
+dPhi = Asin(0.5*(gap + L_t)/r_c);
 Phi = Pi/3 - dPhi;
 z_C = h*(1 - Cos(1.5*Phi));
 r_C = r_b + (r_c - r_b)*z_C/h;
 x_C = r_C*Cos(Phi);
 y_C = r_C*Sin(Phi);
-d_M = 0.5*gap/Sin(Pi/3);
-eps_r = 0.1*r_c;
+If (!Exists(eps_r)) eps_r = 0.1*r_c; EndIf   // rounding of the free edge at the centre
+d_V = 0.5*(gap + L_t)/Sin(Pi/3);
+k_F = (x_C - d_V)/Sqrt(y_C^2 + eps_r^2);
+d_M = d_V + k_F*eps_r;
 
 // Mid-line length for the centre height zm (Bezier N-Q-M, 64 chords), as
 // a macro: in zm, out len
@@ -152,7 +158,7 @@ Macro MidLineLength
 Return
 If (L_h <= dr)
     General.AbortOnError = 4; // exit(1) at the error
-    Error("valveParameters.geo: L_h = %g is too short: the leaflet cannot reach the valve centre from the base (r_b - gap/2/sin(60) = %g)", L_h, dr);
+    Error("valveParameters.geo: L_h = %g is too short: the leaflet cannot reach the valve centre from the base (r_b - d_M = %g)", L_h, dr);
     Abort;
 EndIf
 zm = z_C - 0.5*L_t;
