@@ -45,7 +45,7 @@ If (!Exists(L_in))  L_in = 2*r_b; EndIf
 If (!Exists(L_out)) L_out = 3*r_b; EndIf
 // mesh sizes: the 'coarse' preset (makeValveMeshes sets the others)
 If (!Exists(fluidSize))   fluidSize = 1.6;   EndIf
-If (!Exists(leafletSize)) leafletSize = 0.9; EndIf
+If (!Exists(leafletSize)) leafletSize = 1.2; EndIf
 If (!Exists(wallSize))    wallSize = 0.8;    EndIf
 
 //------------------------------------------------------------------------------
