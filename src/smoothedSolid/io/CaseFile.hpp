@@ -20,6 +20,9 @@
 //                                             (normalised, right-handed about the
 //                                             axis) at its centroid
 //                 uniform (x y z)             or one direction for all
+//                 file <path>                 or one line 'x y z' per element in
+//                                             the mesh's order ('#' comments;
+//                                             e.g. makeValveMeshes' .circumferential)
 //                                             (parentheses optional; only with a
 //                                             fibre-reinforced material)
 //   formulation   selective | FS-FEM | NS-FEM | FEM-T4

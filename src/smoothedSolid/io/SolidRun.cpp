@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <algorithm>
 #include <iomanip>
 #include <limits>
@@ -74,6 +75,7 @@ std::shared_ptr<Material> makeMaterial(const CaseFile& c, const CaseEntry& e)
 // The 'fibres' entry: one unit direction per element (reference configuration)
 //   fibres uniform (x y z)
 //   fibres cylindrical origin (x y z) axis (x y z)
+//   fibres file <path>          one direction per element, relative to the case
 // cylindrical: e_theta = axis x r / |axis x r| at the element's centroid, r
 // from the origin (right-handed about the axis); parentheses optional
 std::vector<Vec3> fibreDirections(const CaseFile& c, const CaseEntry& e, const TetMesh& mesh)
@@ -92,7 +94,7 @@ std::vector<Vec3> fibreDirections(const CaseFile& c, const CaseEntry& e, const T
     }
     auto vec = [&](std::size_t i) { return Vec3(c.number(a, i), c.number(a, i + 1), c.number(a, i + 2)); };
     const char* usage =
-        "expected 'uniform (x y z)' or 'cylindrical origin (x y z) axis (x y z)'";
+        "expected 'uniform (x y z)', 'cylindrical origin (x y z) axis (x y z)' or 'file <path>'";
     if (a.args.empty()) c.fail(e, usage);
     const int ne = mesh.nElements();
     if (a.args[0] == "uniform") {
@@ -118,6 +120,38 @@ std::vector<Vec3> fibreDirections(const CaseFile& c, const CaseEntry& e, const T
                               "direction is undefined: move the origin or the axis");
             }
             d[el] = et.normalized();
+        }
+        return d;
+    }
+    if (a.args[0] == "file") {
+        // one line "x y z" per element, in the order of the mesh file's
+        // tetrahedra; '#' starts a comment (e.g. the .circumferential file
+        // written beside the valve leaflets by makeValveMeshes)
+        if (e.args.size() != 2) c.fail(e, usage);
+        std::filesystem::path p(e.args[1]);
+        if (p.is_relative()) p = std::filesystem::path(c.directory()) / p;
+        std::ifstream in(p);
+        if (!in) c.fail(e, "cannot read the fibre direction file " + p.string());
+        std::vector<Vec3> d;
+        std::string line;
+        int lineNo = 0;
+        while (std::getline(in, line)) {
+            ++lineNo;
+            const auto hash = line.find('#');
+            if (hash != std::string::npos) line.erase(hash);
+            std::istringstream ls(line);
+            Vec3 v;
+            if (!(ls >> v.x())) continue;  // blank or comment
+            std::string rest;
+            if (!(ls >> v.y() >> v.z()) || (ls >> rest) || !v.allFinite() || !(v.norm() > 0)) {
+                c.fail(e, p.string() + " line " + std::to_string(lineNo) +
+                              ": expected three numbers of a non-zero direction");
+            }
+            d.push_back(v.normalized());
+        }
+        if (static_cast<int>(d.size()) != ne) {
+            c.fail(e, p.string() + " holds " + std::to_string(d.size()) + " directions for " +
+                          std::to_string(ne) + " elements of the mesh (one per element, in its order)");
         }
         return d;
     }

@@ -343,3 +343,36 @@ TEST(CaseFile, FibreBadInputNamesFileLineAndKeyword)
                     }),
                     {"fibresK2.solid:2", "material", "k2"});
 }
+
+// fibres from a file, one direction per element in the mesh's order (as
+// makeValveMeshes writes beside the leaflets); a wrong count or a bad line
+// names the file
+TEST(CaseFile, FibreDirectionsFromFile)
+{
+    SolidRun probe(fibreCase("fibresProbeFile", kTissue, "fibres uniform (1 0 0)"));
+    const int ne = probe.solid().mesh().nElements();
+    std::string text = "# x y z per element\n";
+    for (int e = 0; e < ne; ++e) {
+        const double phi = 0.1 * e;
+        text += std::to_string(2 * std::cos(phi)) + " " + std::to_string(2 * std::sin(phi)) + " 0\n";
+    }
+    writeFile("fibres.dirs", text);
+    SolidRun run(fibreCase("fibresFile", kTissue, "fibres file fibres.dirs"));
+    double worst = 0;
+    for (int e = 0; e < ne; ++e) {
+        const double phi = 0.1 * e;
+        // the file holds 6 digits
+        worst = std::max(worst, (run.solid().fibreDirections()[e] - Vec3(std::cos(phi), std::sin(phi), 0)).norm());
+    }
+    std::printf("fibres from a file: max |a0 - written| = %.1e over %d elements (tolerance 1e-6)\n", worst, ne);
+    EXPECT_LT(worst, 1e-6);
+
+    writeFile("short.dirs", "1 0 0\n0 1 0\n");
+    expectFragments(errorOf([] { SolidRun r(fibreCase("fibresShort", kTissue, "fibres file short.dirs")); }),
+                    {"fibresShort.solid:3", "short.dirs", "2 directions for"});
+    writeFile("bad.dirs", "1 0 0\n1 0\n");
+    expectFragments(errorOf([] { SolidRun r(fibreCase("fibresBadLine", kTissue, "fibres file bad.dirs")); }),
+                    {"fibresBadLine.solid:3", "bad.dirs line 2", "three numbers"});
+    expectFragments(errorOf([] { SolidRun r(fibreCase("fibresNoFile", kTissue, "fibres file none.dirs")); }),
+                    {"fibresNoFile.solid:3", "none.dirs", "cannot read"});
+}
