@@ -6,6 +6,7 @@
 #include "Random.H"
 #include "PstreamReduceOps.H"
 #include "Tuple2.H"
+#include "processorPolyPatch.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -42,7 +43,8 @@ Foam::immersedPairs::immersedPairs
     nodeCell_(),
     nSteps_(0),
     nWalks_(0),
-    nFallback_(0)
+    nFallback_(0),
+    nLeft_(0)
 {
     if (samples_ < 1)
     {
@@ -105,6 +107,16 @@ Foam::label Foam::immersedPairs::walk
             {
                 best = o;
                 bestFace = facei;
+            }
+        }
+        if (bestFace >= 0 && !mesh_.isInternalFace(bestFace))
+        {
+            const label patchi =
+                mesh_.boundaryMesh().whichPatch(bestFace);
+            if (isA<processorPolyPatch>(mesh_.boundaryMesh()[patchi]))
+            {
+                // Most likely on the neighbouring rank
+                return -2;
             }
         }
         if (bestFace < 0 || !mesh_.isInternalFace(bestFace))
@@ -181,6 +193,7 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
     nSteps_ = 0;
     nWalks_ = 0;
     nFallback_ = 0;
+    nLeft_ = 0;
 
     labelList cells(n, -1);
     forAll(x, i)
@@ -190,7 +203,11 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
         {
             ++nWalks_;
             c = walk(x[i], nodeCell_[i], nSteps_);
-            if (c < 0)
+            if (c == -2)
+            {
+                ++nLeft_;
+            }
+            else if (c < 0)
             {
                 ++nFallback_;
             }
@@ -340,7 +357,7 @@ void Foam::immersedPairs::findCoveredCells
                     label celli = -1;
                     if (seed >= 0)
                     {
-                        celli = walk(p, seed, dummySteps);
+                        celli = max(walk(p, seed, dummySteps), label(-1));
                     }
                     if (celli < 0)
                     {

@@ -51,7 +51,7 @@ Foam::fileName Foam::immersedSolid::meshFile() const
     f.expand();
     if (!f.isAbsolute())
     {
-        f = runTime_.path()/f;
+        f = runTime_.globalPath()/f;
     }
     return f;
 }

@@ -383,7 +383,7 @@ Foam::immersedSolids::deformable::deformable
             f.expand();
             if (!f.isAbsolute())
             {
-                f = runTime.path()/f;
+                f = runTime.globalPath()/f;
             }
             const bool flip = d.getOrDefault<Switch>("flip", false);
             guarded(cs, e.keyword(), [&]
@@ -400,7 +400,7 @@ Foam::immersedSolids::deformable::deformable
         fileName dir(o.getOrDefault<fileName>("directory", "VTK/solid"));
         if (!dir.isAbsolute())
         {
-            dir = runTime.path()/dir;
+            dir = runTime.globalPath()/dir;
         }
         vtu_.reset(new smoothedSolid::VtuSeries(dir, "solid"));
     }
@@ -441,7 +441,7 @@ void Foam::immersedSolids::deformable::advance(const scalar dt)
 
 void Foam::immersedSolids::deformable::write() const
 {
-    if (vtu_ && runTime_.writeTime())
+    if (vtu_ && runTime_.writeTime() && Pstream::master())
     {
         vtu_->write(*solid_);
     }
