@@ -7,6 +7,9 @@
 #include "PstreamReduceOps.H"
 #include "Tuple2.H"
 #include "processorPolyPatch.H"
+#include "treeDataCell.H"
+#include "polyMeshTetDecomposition.H"
+
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -38,7 +41,7 @@ Foam::immersedPairs::immersedPairs
     (
         coverageTypeNames.getOrDefault("coverage", dict, coverageType::centre)
     ),
-    samples_(dict.getOrDefault<label>("samples", 2)),
+
     maxWalk_(dict.getOrDefault<label>("maxWalk", 100)),
     nodeCell_(),
     nSteps_(0),
@@ -46,11 +49,10 @@ Foam::immersedPairs::immersedPairs
     nFallback_(0),
     nLeft_(0)
 {
-    if (samples_ < 1)
+    // The cell bounding-box octree of the touching coverage, built once
+    if (coverage_ == coverageType::touching)
     {
-        FatalIOErrorInFunction(dict)
-            << "Entry 'samples' in " << dict.name() << " must be >= 1"
-            << exit(FatalIOError);
+        search_.cellTree();
     }
 
     // Octree of the cell centres, built once (the fluid mesh never moves)
@@ -327,74 +329,137 @@ void Foam::immersedPairs::findCoveredCells
         return;
     }
 
-    // Cells touched by the elements: those containing a lattice point
-    // (m = samples_ intervals per edge, nodes included) of an element.
-    // The weights: barycentric coordinates of the cell centre clamped to
-    // the element.
-    const label m = samples_;
-    label dummySteps = 0;
+    // Cells touched by the elements: a tet of the cell's CELL_TETS
+    // decomposition (the one of the inside test) and the element intersect
+    // (closed sets: touching counts), by separating axes. Candidates: the
+    // cells whose bounding box overlaps the element's. Weights: the
+    // barycentric coordinates of the cell centre clamped to the element.
+    const indexedOctree<treeDataCell>& cellTree = search_.cellTree();
     forAll(elements, e)
     {
         const tetLabels& t = elements[e];
-        label seed = -1;
-        if (nodeCell_.size() == x.size())
+        const FixedList<point, 4> A({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
+
+        treeBoundBox bb(A[0], A[0]);
+        for (label k = 1; k < 4; ++k)
         {
-            seed = nodeCell_[t[0]];
+            bb.add(A[k]);
         }
+        const scalar tol = 1e-9*mag(bb.span()) + ROOTVSMALL;
+        bb.min() -= point::uniform(tol);
+        bb.max() += point::uniform(tol);
 
-        for (label i = 0; i <= m; ++i)
+        const labelList cand(cellTree.findBox(bb));
+        for (const label celli : cand)
         {
-            for (label j = 0; i + j <= m; ++j)
+            if (slot[celli] >= 0)
             {
-                for (label k = 0; i + j + k <= m; ++k)
+                continue;
+            }
+            bool hit = false;
+            const List<tetIndices> cellTets
+            (
+                polyMeshTetDecomposition::cellTetIndices(mesh_, celli)
+            );
+            for (const tetIndices& ti : cellTets)
+            {
+                const tetPointRef tp(ti.tet(mesh_));
+                const FixedList<point, 4> B({tp.a(), tp.b(), tp.c(), tp.d()});
+                if (tetsIntersect(A, B))
                 {
-                    const label l = m - i - j - k;
-                    const point p
-                    (
-                        (i*x[t[0]] + j*x[t[1]] + k*x[t[2]] + l*x[t[3]])
-                       /scalar(m)
-                    );
-                    label celli = -1;
-                    if (seed >= 0)
-                    {
-                        celli = max(walk(p, seed, dummySteps), label(-1));
-                    }
-                    if (celli < 0)
-                    {
-                        celli = search_.findCell(p, -1, true);
-                    }
-                    if (celli < 0 || slot[celli] >= 0)
-                    {
-                        continue;
-                    }
-                    seed = celli;
-
-                    tetWeights w
-                    (
-                        barycentric
-                        (
-                            C[celli], x[t[0]], x[t[1]], x[t[2]], x[t[3]]
-                        )
-                    );
-                    scalar sum = 0;
-                    for (scalar& wi : w)
-                    {
-                        wi = max(wi, scalar(0));
-                        sum += wi;
-                    }
-                    for (scalar& wi : w)
-                    {
-                        wi /= sum;
-                    }
-                    slot[celli] = coveredCells_.size();
-                    coveredCells_.append(celli);
-                    coveringElement_.append(e);
-                    weights_.append(w);
-                    centreInside_.append(false);
+                    hit = true;
+                    break;
                 }
+            }
+            if (!hit)
+            {
+                continue;
+            }
+
+            tetWeights w(barycentric(C[celli], A[0], A[1], A[2], A[3]));
+            scalar sum = 0;
+            for (scalar& wi : w)
+            {
+                wi = max(wi, scalar(0));
+                sum += wi;
+            }
+            for (scalar& wi : w)
+            {
+                wi /= sum;
+            }
+            slot[celli] = coveredCells_.size();
+            coveredCells_.append(celli);
+            coveringElement_.append(e);
+            weights_.append(w);
+            centreInside_.append(false);
+        }
+    }
+}
+
+
+bool Foam::immersedPairs::tetsIntersect
+(
+    const FixedList<point, 4>& A,
+    const FixedList<point, 4>& B
+)
+{
+    static const label edges[6][2] =
+        {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    static const label faces[4][3] =
+        {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+    scalar scale = 0;
+    for (label i = 0; i < 6; ++i)
+    {
+        scale = max(scale, magSqr(A[edges[i][1]] - A[edges[i][0]]));
+        scale = max(scale, magSqr(B[edges[i][1]] - B[edges[i][0]]));
+    }
+
+    // Separated along n: the projections do not overlap (strictly)
+    auto separated = [&](const vector& n)
+    {
+        if (magSqr(n) <= 1e-24*sqr(scale))
+        {
+            return false;   // parallel edges: no axis
+        }
+        scalar minA = GREAT, maxA = -GREAT, minB = GREAT, maxB = -GREAT;
+        for (label k = 0; k < 4; ++k)
+        {
+            const scalar a = n & A[k];
+            const scalar b = n & B[k];
+            minA = min(minA, a);
+            maxA = max(maxA, a);
+            minB = min(minB, b);
+            maxB = max(maxB, b);
+        }
+        return maxA < minB || maxB < minA;
+    };
+
+    for (label f = 0; f < 4; ++f)
+    {
+        const label* v = faces[f];
+        if (separated((A[v[1]] - A[v[0]]) ^ (A[v[2]] - A[v[0]])))
+        {
+            return false;
+        }
+        if (separated((B[v[1]] - B[v[0]]) ^ (B[v[2]] - B[v[0]])))
+        {
+            return false;
+        }
+    }
+    for (label i = 0; i < 6; ++i)
+    {
+        const vector ea(A[edges[i][1]] - A[edges[i][0]]);
+        for (label j = 0; j < 6; ++j)
+        {
+            const vector eb(B[edges[j][1]] - B[edges[j][0]]);
+            if (separated(ea ^ eb))
+            {
+                return false;
             }
         }
     }
+    return true;
 }
 
 

@@ -14,6 +14,8 @@ Description
         -test walk     mean walk steps per node per step while the (rigid)
                        solid moves by its prescribed motion
         -test interp   both interpolation directions on linear fields
+        -test coverage covered cells of a (thin) solid where it is, against
+                       the cells a dense lattice of its points lies in
         -test outside  the solid shifted by -shift (x y z): must stop with
                        a FatalError
 
@@ -30,6 +32,8 @@ Description
 #include "Random.H"
 #include "Function1.H"
 #include "calculatedFvPatchField.H"
+#include "meshSearch.H"
+#include "polyMeshTetDecomposition.H"
 
 using namespace Foam;
 
@@ -86,7 +90,7 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
-    argList::addOption("test", "name", "solid | pairs | walk | interp | outside");
+    argList::addOption("test", "name", "solid | pairs | walk | interp | coverage | outside");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -470,6 +474,132 @@ int main(int argc, char *argv[])
             }
         }
         check("nodes not owned by exactly one rank", nBad, 0, 0, nBad == 0);
+    }
+    else if (test == "coverage")
+    {
+        // A thin solid where it is (e.g. a plate thinner than the cells):
+        // the cells its interior passes through, found by a dense lattice
+        // (16 intervals per edge) of points in every element, against the
+        // covered cells of 'centre' and 'touching' coverage
+        const pointField& x = solid.points();
+        meshSearch ms(mesh, polyMesh::CELL_TETS);
+        labelHashSet crossed;
+        const label m = 16;
+        for (const solidTet& t : solid.elements())
+        {
+            for (label i = 0; i <= m; ++i)
+            for (label j = 0; i + j <= m; ++j)
+            for (label k = 0; i + j + k <= m; ++k)
+            {
+                const label l = m - i - j - k;
+                const point p
+                (
+                    (i*x[t[0]] + j*x[t[1]] + k*x[t[2]] + l*x[t[3]])/scalar(m)
+                );
+                const label c = ms.findCell(p, -1, true);
+                if (c >= 0)
+                {
+                    crossed.insert(c);
+                }
+            }
+        }
+        const label nCrossed = returnReduce(crossed.size(), sumOp<label>());
+        Info<< "cells the solid passes through (dense lattice): " << nCrossed
+            << endl;
+
+        for (const word cov : {"centre", "touching"})
+        {
+            dictionary d;
+            d.add("coverage", cov);
+            immersedPairs pairs(mesh, d);
+            pairs.findNodeCells(x);
+            pairs.findCoveredCells(x, solid.elements());
+            labelHashSet covered(pairs.coveredCells());
+            label nHit = 0;
+            for (const label c : crossed)
+            {
+                if (covered.found(c))
+                {
+                    ++nHit;
+                }
+            }
+            reduce(nHit, sumOp<label>());
+            const label nCov =
+                returnReduce(pairs.coveredCells().size(), sumOp<label>());
+            const scalar pct = 100.0*nHit/max(nCrossed, 1);
+            Info<< "coverage " << cov << ": " << nCov << " covered cells"
+                << endl;
+            if (cov == "touching")
+            {
+                // Brute force: every (cell, element) pair whose bounding
+                // boxes overlap, by the same tet-tet test
+                List<treeBoundBox> cellBb(mesh.nCells());
+                forAll(cellBb, c)
+                {
+                    cellBb[c] = treeBoundBox
+                    (
+                        boundBox(mesh.points(), mesh.cellPoints()[c], false)
+                    );
+                }
+                labelHashSet brute;
+                forAll(solid.elements(), e)
+                {
+                    const solidTet& t = solid.elements()[e];
+                    const FixedList<point, 4> A
+                        ({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
+                    treeBoundBox eb(A[0], A[0]);
+                    for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
+                    forAll(cellBb, c)
+                    {
+                        if (brute.found(c) || !cellBb[c].overlaps(eb))
+                        {
+                            continue;
+                        }
+                        const immersedPairs::tetWeights w
+                        (
+                            immersedPairs::barycentric(C[c], A[0], A[1], A[2], A[3])
+                        );
+                        bool hit = immersedPairs::insideTet(w);
+                        for
+                        (
+                            const tetIndices& ti
+                          : polyMeshTetDecomposition::cellTetIndices(mesh, c)
+                        )
+                        {
+                            if (hit) break;
+                            const tetPointRef tp(ti.tet(mesh));
+                            hit = immersedPairs::tetsIntersect
+                            (
+                                A, FixedList<point, 4>({tp.a(), tp.b(), tp.c(), tp.d()})
+                            );
+                        }
+                        if (hit)
+                        {
+                            brute.insert(c);
+                        }
+                    }
+                }
+                label nSame = 0;
+                for (const label c : brute)
+                {
+                    if (covered.found(c)) ++nSame;
+                }
+                const bool same =
+                    nSame == brute.size() && brute.size() == covered.size();
+                Info<< "    touching: brute force " << brute.size()
+                    << " cells, octree " << covered.size() << endl;
+                check("touching: covered cells equal to brute force [%]",
+                    100.0*nSame/max(max(brute.size(), covered.size()), 1),
+                    100, 0, same);
+                check("touching: crossed cells covered [%]", pct, 100, 0,
+                    nHit == nCrossed && nCrossed > 0);
+            }
+            else
+            {
+                Info<< "    centre (information, the thin-leaflet trap):"
+                    << " crossed cells covered " << pct << " %" << endl;
+            }
+        }
     }
     else if (test == "outside")
     {
