@@ -9,6 +9,8 @@ Description
 
         -test solid    the solid object: sizes, rigid motion against the
                        analytic positions, a deformable solid's advance
+        -test force    a free deformable solid under a nodal external force:
+                       momentum against the impulse
         -test pairs    F-S and S-F pairs against brute force (every cell
                        with the same inside test) for random placements
         -test walk     mean walk steps per node per step while the (rigid)
@@ -26,6 +28,7 @@ Description
 
 #include "fvCFD.H"
 #include "immersedSolid.H"
+#include "deformableSolid.H"
 #include "immersedPairs.H"
 #include "immersedInterpolation.H"
 #include "interpolation.H"
@@ -90,7 +93,7 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
-    argList::addOption("test", "name", "solid | pairs | walk | interp | coverage | outside");
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | outside");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -169,6 +172,31 @@ int main(int argc, char *argv[])
             check("deformable time", solid.time(), dt, 1e-15,
                 mag(solid.time() - dt) < 1e-15);
         }
+    }
+    else if (test == "force")
+    {
+        // A free deformable solid under a constant nodal external force
+        // (total F) for T: central difference momentum
+        //   sum m v^{N-1/2} = F (T - h_N/2),  h_N the last sub-step,
+        // so sum m v/(F T) lies in [1 - 1/(2 N') , 1] with N' = T/h_N;
+        // checked: |sum m v/(F T) - 1| <= 1/N (N sub-steps, h_N <= 2T/N)
+        immersedSolids::deformable& d =
+            refCast<immersedSolids::deformable>(solid);
+        const vector F(0.6, -0.3, 0.2);
+        solid.externalForce() = F/scalar(solid.nPoints());
+        const scalar T = 0.05;
+        solid.advance(T);
+        const scalarField m(d.lumpedMass());
+        const vector P(sum(m*solid.velocities()));
+        const label N = d.lastSubSteps();
+        const scalar ratio = (P & F)/(magSqr(F)*T);
+        const scalar perp = mag(P - ((P & F)/magSqr(F))*F)/(mag(F)*T);
+        Info<< "sub-steps " << N << ", total mass " << sum(m) << endl;
+        check("sum m v / (F T)", ratio, 1, 1.0/N, mag(ratio - 1) <= 1.0/N);
+        check("momentum across F / (|F| T)", perp, 0, 1e-10, perp < 1e-10);
+        check("sub-cycled (sub-steps > 1)", N, 2, 0, N > 1);
+        const vector Fsum(sum(d.externalForce()));
+        Info<< "    total external force " << Fsum << endl;
     }
     else if (test == "pairs")
     {

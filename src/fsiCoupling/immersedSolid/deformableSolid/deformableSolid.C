@@ -195,7 +195,8 @@ Foam::immersedSolids::deformable::deformable
     const IOdictionary& dict
 )
 :
-    immersedSolid(runTime, dict)
+    immersedSolid(runTime, dict),
+    lastSubSteps_(0)
 {
     checkKeywords
     (
@@ -426,7 +427,7 @@ void Foam::immersedSolids::deformable::advance(const scalar dt)
     }
     try
     {
-        solid_->advance(dt);
+        lastSubSteps_ = solid_->advance(dt);
     }
     catch (const smoothedSolid::Error& err)
     {
@@ -436,6 +437,19 @@ void Foam::immersedSolids::deformable::advance(const scalar dt)
     }
     time_ += dt;
     fromSolid();
+}
+
+
+Foam::tmp<Foam::scalarField>
+Foam::immersedSolids::deformable::lumpedMass() const
+{
+    const std::vector<double>& m = solid_->lumpedMass();
+    auto tmass = tmp<scalarField>::New(label(m.size()));
+    forAll(tmass(), i)
+    {
+        tmass.ref()[i] = m[i];
+    }
+    return tmass;
 }
 
 
