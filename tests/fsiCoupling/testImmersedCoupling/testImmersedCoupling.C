@@ -18,6 +18,8 @@ Description
         -test interp   both interpolation directions on linear fields
         -test coverage covered cells of a (thin) solid where it is, against
                        the cells a dense lattice of its points lies in
+        -test coupling the immersedCoupling object over 5 steps of the rigid
+                       motion: transfers exact for linear fields
         -test outside  the solid shifted by -shift (x y z): must stop with
                        a FatalError
 
@@ -28,6 +30,7 @@ Description
 
 #include "fvCFD.H"
 #include "immersedSolid.H"
+#include "immersedCoupling.H"
 #include "deformableSolid.H"
 #include "immersedPairs.H"
 #include "immersedInterpolation.H"
@@ -93,7 +96,7 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
-    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | outside");
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | outside");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -628,6 +631,79 @@ int main(int argc, char *argv[])
                     << " crossed cells covered " << pct << " %" << endl;
             }
         }
+    }
+    else if (test == "coupling")
+    {
+        // The coupling object through a few steps of the rigid solid's
+        // prescribed motion: pairs updated, transfers exact for linear
+        // fields (default interpolation cellLinear)
+        immersedCoupling coupling(mesh);
+        const scalar p0 = 1.5;
+        const vector gp(2, -3, 0.5);
+        volScalarField p
+        (
+            IOobject("p", runTime.timeName(), mesh),
+            mesh,
+            dimensionedScalar(dimless, Zero),
+            calculatedFvPatchField<scalar>::typeName
+        );
+        forAll(C, c)
+        {
+            p[c] = p0 + (gp & C[c]);
+        }
+        forAll(mesh.boundary(), patchi)
+        {
+            if (!mesh.boundary()[patchi].coupled())
+            {
+                p.boundaryFieldRef()[patchi] ==
+                    p0 + (gp & mesh.boundary()[patchi].Cf());
+            }
+        }
+        p.correctBoundaryConditions();
+
+        scalar ep = 0, ev = 0;
+        label nCovered = 0;
+        const scalar dt = runTime.deltaTValue();
+        for (label k = 0; k < 5; ++k)
+        {
+            coupling.solid().advance(dt);
+            coupling.updatePairs();
+            const pointField& x = coupling.solid().points();
+            const scalarField ps(coupling.fluidToSolid(p));
+            forAll(x, i)
+            {
+                ep = max(ep, mag(ps[i] - p0 - (gp & x[i]))/p0);
+            }
+            // rigid motion: the velocity field is linear in space
+            const vectorField vf
+            (
+                coupling.solidToFluid(coupling.solid().velocities())
+            );
+            const labelUList& cells = coupling.pairs().coveredCells();
+            const dictionary& m = props.subDict("motion");
+            const vector v(Function1<vector>::New("velocity", m)->value(0));
+            const scalar w = Function1<scalar>::New("omega", m)->value(0);
+            const vector axis(normalised(m.get<vector>("axis")));
+            const point centre
+            (
+                m.get<point>("origin") + v*(coupling.solid().time())
+            );
+            forAll(vf, j)
+            {
+                const vector exact(v + w*(axis ^ (C[cells[j]] - centre)));
+                ev = max(ev, mag(vf[j] - exact)/mag(v));
+            }
+            nCovered += vf.size();
+        }
+        reduce(ep, maxOp<scalar>());
+        reduce(ev, maxOp<scalar>());
+        reduce(nCovered, sumOp<label>());
+        Info<< "covered cells over 5 steps: " << nCovered << nl
+            << "search time " << coupling.searchTime() << " s, transfer time "
+            << coupling.transferTime() << " s" << endl;
+        check("coupling: fluid->solid p max rel. error", ep, 0, 1e-10, ep < 1e-10);
+        check("coupling: solid->fluid v max rel. error", ev, 0, 1e-10,
+            ev < 1e-10 && nCovered > 0);
     }
     else if (test == "outside")
     {
