@@ -615,13 +615,14 @@ int main(int argc, char *argv[])
                 {
                     if (covered.found(c)) ++nSame;
                 }
-                const bool same =
-                    nSame == brute.size() && brute.size() == covered.size();
-                Info<< "    touching: brute force " << brute.size()
-                    << " cells, octree " << covered.size() << endl;
+                const label nBrute = returnReduce(brute.size(), sumOp<label>());
+                const label nOct = returnReduce(covered.size(), sumOp<label>());
+                reduce(nSame, sumOp<label>());
+                const bool same = nSame == nBrute && nBrute == nOct;
+                Info<< "    touching: brute force " << nBrute
+                    << " cells, octree " << nOct << endl;
                 check("touching: covered cells equal to brute force [%]",
-                    100.0*nSame/max(max(brute.size(), covered.size()), 1),
-                    100, 0, same);
+                    100.0*nSame/max(max(nBrute, nOct), 1), 100, 0, same);
                 check("touching: crossed cells covered [%]", pct, 100, 0,
                     nHit == nCrossed && nCrossed > 0);
             }

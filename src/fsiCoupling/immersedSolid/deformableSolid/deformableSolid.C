@@ -440,6 +440,19 @@ void Foam::immersedSolids::deformable::advance(const scalar dt)
 }
 
 
+void Foam::immersedSolids::deformable::setState
+(
+    const pointField&,
+    const vectorField&
+)
+{
+    FatalErrorInFunction
+        << "A deformable immersed solid's configuration follows from its"
+        << " dynamics; it cannot be set directly"
+        << exit(FatalError);
+}
+
+
 Foam::tmp<Foam::scalarField>
 Foam::immersedSolids::deformable::lumpedMass() const
 {
