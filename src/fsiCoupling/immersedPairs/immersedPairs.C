@@ -37,6 +37,7 @@ Foam::immersedPairs::immersedPairs
     mesh_(mesh),
     search_(mesh, polyMesh::CELL_TETS),
     centreTree_(),
+    cellBoxTree_(),
     coverage_
     (
         coverageTypeNames.getOrDefault("coverage", dict, coverageType::centre)
@@ -49,10 +50,26 @@ Foam::immersedPairs::immersedPairs
     nFallback_(0),
     nLeft_(0)
 {
-    // The cell bounding-box octree of the touching coverage, built once
+    // The cell bounding-box octree of the touching coverage (cached
+    // boxes), built once
     if (coverage_ == coverageType::touching)
     {
-        search_.cellTree();
+        treeBoundBox cbb(mesh_.points());
+        Random rndGenBox(5678);
+        cbb = cbb.extend(rndGenBox, 1e-4);
+        cbb.min() -= point::uniform(ROOTVSMALL);
+        cbb.max() += point::uniform(ROOTVSMALL);
+        cellBoxTree_.reset
+        (
+            new indexedOctree<treeDataCell>
+            (
+                treeDataCell(true, mesh_, polyMesh::CELL_TETS),
+                cbb,
+                8,
+                10.0,
+                6.0
+            )
+        );
     }
 
     // Octree of the cell centres, built once (the fluid mesh never moves)
@@ -334,7 +351,9 @@ void Foam::immersedPairs::findCoveredCells
     // (closed sets: touching counts), by separating axes. Candidates: the
     // cells whose bounding box overlaps the element's. Weights: the
     // barycentric coordinates of the cell centre clamped to the element.
-    const indexedOctree<treeDataCell>& cellTree = search_.cellTree();
+    const indexedOctree<treeDataCell>& cellTree = *cellBoxTree_;
+    const cellList& cells = mesh_.cells();
+    const faceList& faces = mesh_.faces();
     forAll(elements, e)
     {
         const tetLabels& t = elements[e];
@@ -356,18 +375,29 @@ void Foam::immersedPairs::findCoveredCells
             {
                 continue;
             }
+            // The cell's tets (as polyMeshTetDecomposition::cellTetIndices,
+            // without its allocations); a bounding-box check before the
+            // separating axes
             bool hit = false;
-            const List<tetIndices> cellTets
-            (
-                polyMeshTetDecomposition::cellTetIndices(mesh_, celli)
-            );
-            for (const tetIndices& ti : cellTets)
+            for (const label facei : cells[celli])
             {
-                const tetPointRef tp(ti.tet(mesh_));
-                const FixedList<point, 4> B({tp.a(), tp.b(), tp.c(), tp.d()});
-                if (tetsIntersect(A, B))
+                const label nTri = faces[facei].size() - 2;
+                for (label tetPti = 1; tetPti <= nTri && !hit; ++tetPti)
                 {
-                    hit = true;
+                    const tetPointRef tp
+                    (
+                        tetIndices(celli, facei, tetPti).tet(mesh_)
+                    );
+                    const FixedList<point, 4> B
+                        ({tp.a(), tp.b(), tp.c(), tp.d()});
+                    treeBoundBox tb(B[0], B[0]);
+                    tb.add(B[1]);
+                    tb.add(B[2]);
+                    tb.add(B[3]);
+                    hit = tb.overlaps(bb) && tetsIntersect(A, B);
+                }
+                if (hit)
+                {
                     break;
                 }
             }
