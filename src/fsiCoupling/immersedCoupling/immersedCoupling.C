@@ -1,0 +1,61 @@
+/*---------------------------------------------------------------------------*\
+    isfem: immersed smoothed finite element method (fsiCoupling)
+\*---------------------------------------------------------------------------*/
+
+#include "immersedCoupling.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+    defineTypeNameAndDebug(immersedCoupling, 0);
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::immersedCoupling::immersedCoupling(const fvMesh& mesh)
+:
+    mesh_(mesh),
+    solid_(immersedSolid::New(mesh.time())),
+    pairs_(mesh, solid_->dict().subOrEmptyDict("coupling")),
+    interpolationScheme_
+    (
+        solid_->dict().subOrEmptyDict("coupling")
+       .getOrDefault<word>("interpolation", "cellLinear")
+    ),
+    searchTime_(0),
+    transferTime_(0)
+{
+    if (solid_->dict().found("coupling"))
+    {
+        const dictionary& c = solid_->dict().subDict("coupling");
+        const wordList allowed({"coverage", "interpolation", "maxWalk"});
+        for (const entry& e : c)
+        {
+            if (!allowed.found(e.keyword()))
+            {
+                FatalIOErrorInFunction(c)
+                    << "Unknown keyword '" << e.keyword() << "' in "
+                    << c.name() << nl
+                    << "    Valid keywords: " << flatOutput(allowed)
+                    << exit(FatalIOError);
+            }
+        }
+    }
+    updatePairs();
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::immersedCoupling::updatePairs()
+{
+    const clockValue start(true);
+    pairs_.findNodeCells(solid_->points());
+    pairs_.findCoveredCells(solid_->points(), solid_->elements());
+    searchTime_ += double(start.elapsed());
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,478 @@
+/*---------------------------------------------------------------------------*\
+    isfem: immersed smoothed finite element method (fsiCoupling)
+\*---------------------------------------------------------------------------*/
+
+// The solid library first (Eigen), then OpenFOAM
+#include "dynamics/ExplicitSolid.hpp"
+#include "io/SurfaceFile.hpp"
+#include "io/VtuWriter.hpp"
+#include "material/Material.hpp"
+#include "mesh/TetMesh.hpp"
+#include "smoothing/SmoothingDomains.hpp"
+
+#include "deformableSolid.H"
+#include "addToRunTimeSelectionTable.H"
+#include "Switch.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+namespace immersedSolids
+{
+    defineTypeNameAndDebug(deformable, 0);
+    addToRunTimeSelectionTable(immersedSolid, deformable, dictionary);
+}
+}
+
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+using namespace Foam;
+
+smoothedSolid::Vec3 toVec3(const vector& v)
+{
+    return smoothedSolid::Vec3(v.x(), v.y(), v.z());
+}
+
+// Component mask from a word of letters x, y, z
+std::array<bool, 3> componentMask
+(
+    const word& w,
+    const dictionary& dict,
+    const word& key
+)
+{
+    std::array<bool, 3> m{{false, false, false}};
+    for (const char c : w)
+    {
+        if (c < 'x' || c > 'z')
+        {
+            FatalIOErrorInFunction(dict)
+                << "Entry '" << key << "' in " << dict.name()
+                << ": components must be letters of xyz, got '" << w << "'"
+                << exit(FatalIOError);
+        }
+        m[c - 'x'] = true;
+    }
+    return m;
+}
+
+// FatalIOError for a keyword outside 'allowed'
+void checkKeys(const dictionary& dict, const wordList& allowed)
+{
+    for (const entry& e : dict)
+    {
+        if (!allowed.found(e.keyword()))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Unknown keyword '" << e.keyword() << "' in "
+                << dict.name() << nl
+                << "    Valid keywords: " << flatOutput(allowed)
+                << exit(FatalIOError);
+        }
+    }
+}
+
+// The material of the sub-dictionary 'material' (smoothedSolid's case-file
+// 'material' entry as keywords)
+std::shared_ptr<smoothedSolid::Material> makeMaterial(const dictionary& d)
+{
+    using namespace smoothedSolid;
+    const word type(d.get<word>("type"));
+
+    // kappa given, or from nu (Eq. 27)
+    auto kappa = [&](scalar c10, scalar c01)
+    {
+        if (d.found("kappa"))
+        {
+            return d.get<scalar>("kappa");
+        }
+        return MooneyRivlin::kappaFromPoisson(c10, c01, d.get<scalar>("nu"));
+    };
+
+    try
+    {
+        if (type == "neoHookean")
+        {
+            checkKeys(d, {"type", "mu", "K", "rho"});
+            return std::make_shared<NeoHookean>
+            (
+                d.get<scalar>("mu"), d.get<scalar>("K"), d.get<scalar>("rho")
+            );
+        }
+        if (type == "mooneyRivlin")
+        {
+            checkKeys(d, {"type", "c10", "c01", "kappa", "nu", "rho"});
+            const scalar c10 = d.get<scalar>("c10");
+            const scalar c01 = d.get<scalar>("c01");
+            return std::make_shared<MooneyRivlin>
+            (
+                c10, c01, kappa(c10, c01), d.get<scalar>("rho")
+            );
+        }
+        if (type == "holzapfelGasserOgden")
+        {
+            checkKeys
+            (
+                d,
+                {"type", "c10", "c01", "k1", "k2", "kappa", "nu", "rho"}
+            );
+            const scalar c10 = d.get<scalar>("c10");
+            const scalar c01 = d.getOrDefault<scalar>("c01", 0);
+            return std::make_shared<HolzapfelGasserOgden>
+            (
+                c10, c01, d.get<scalar>("k1"), d.get<scalar>("k2"),
+                kappa(c10, c01), d.get<scalar>("rho")
+            );
+        }
+        if (type == "stVenantKirchhoff")
+        {
+            checkKeys(d, {"type", "mu", "lambda", "nu", "rho"});
+            const scalar mu = d.get<scalar>("mu");
+            scalar lambda = 0;
+            if (d.found("lambda"))
+            {
+                lambda = d.get<scalar>("lambda");
+            }
+            else
+            {
+                const scalar nu = d.get<scalar>("nu");
+                if (!(nu > 0 && nu < 0.5))
+                {
+                    FatalIOErrorInFunction(d)
+                        << "Entry 'nu' in " << d.name()
+                        << " must lie in (0, 0.5)" << exit(FatalIOError);
+                }
+                lambda = 2*mu*nu/(1 - 2*nu);
+            }
+            return std::make_shared<StVenantKirchhoff>
+            (
+                mu, lambda, d.get<scalar>("rho")
+            );
+        }
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalIOErrorInFunction(d)
+            << "Entry 'material' in " << d.name() << ": " << err.what()
+            << exit(FatalIOError);
+    }
+
+    FatalIOErrorInFunction(d)
+        << "Unknown material type '" << type << "' in " << d.name() << nl
+        << "    Valid types: (neoHookean mooneyRivlin stVenantKirchhoff"
+        << " holzapfelGasserOgden)"
+        << exit(FatalIOError);
+    return nullptr;
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::immersedSolids::deformable::fromSolid()
+{
+    const std::vector<smoothedSolid::Vec3> x = solid_->currentCoordinates();
+    const std::vector<smoothedSolid::Vec3>& v = solid_->velocity();
+    forAll(points_, i)
+    {
+        points_[i] = point(x[i](0), x[i](1), x[i](2));
+        velocities_[i] = vector(v[i](0), v[i](1), v[i](2));
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::immersedSolids::deformable::deformable
+(
+    const Time& runTime,
+    const IOdictionary& dict
+)
+:
+    immersedSolid(runTime, dict),
+    lastSubSteps_(0)
+{
+    checkKeywords
+    (
+        dict_,
+        {
+            "type", "mesh", "formulation", "material", "fibres", "fixed",
+            "prescribedMotion", "safety", "damping", "bodyForce", "contact",
+            "contactSurfaces", "output"
+        }
+    );
+
+    // Run the solid library's own checks, reporting against the entry
+    auto guarded = [&](const dictionary& d, const word& key, auto f)
+    {
+        try
+        {
+            f();
+        }
+        catch (const smoothedSolid::Error& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "Entry '" << key << "' in " << d.name() << ": "
+                << err.what() << exit(FatalIOError);
+        }
+    };
+
+    smoothedSolid::SolidOptions opt;
+    {
+        const word f(dict_.getOrDefault<word>("formulation", "selective"));
+        guarded(dict_, "formulation", [&]
+        {
+            opt.formulation = smoothedSolid::formulationFromString(f);
+        });
+    }
+    opt.safety = dict_.getOrDefault<scalar>("safety", opt.safety);
+    opt.damping = dict_.getOrDefault<scalar>("damping", opt.damping);
+
+    const dictionary& matDict = dict_.subDict("material");
+    std::shared_ptr<smoothedSolid::Material> material = makeMaterial(matDict);
+
+    guarded(dict_, "mesh", [&]
+    {
+        solid_.reset
+        (
+            new smoothedSolid::ExplicitSolid
+            (
+                smoothedSolid::TetMesh::fromGmsh(meshFile()),
+                material,
+                opt
+            )
+        );
+    });
+    smoothedSolid::ExplicitSolid& s = *solid_;
+
+    // Fibres
+    if (dict_.found("fibres"))
+    {
+        const dictionary& f = dict_.subDict("fibres");
+        if (!s.material().hasFibres())
+        {
+            FatalIOErrorInFunction(f)
+                << "Entry 'fibres' in " << dict_.name() << ": material "
+                << s.material().name() << " has no fibres: remove this entry"
+                << " or use holzapfelGasserOgden" << exit(FatalIOError);
+        }
+        const word layout(f.get<word>("type"));
+        std::vector<smoothedSolid::Vec3> a(nElements());
+        if (layout == "uniform")
+        {
+            checkKeys(f, {"type", "direction"});
+            const vector d(f.get<vector>("direction"));
+            for (auto& ai : a) { ai = toVec3(d); }
+        }
+        else if (layout == "cylindrical")
+        {
+            checkKeys(f, {"type", "origin", "axis"});
+            const point o(f.get<point>("origin"));
+            const vector n(normalised(f.get<vector>("axis")));
+            forAll(elements_, e)
+            {
+                const solidTet& t = elements_[e];
+                const vector r =
+                    0.25*(points0_[t[0]] + points0_[t[1]]
+                        + points0_[t[2]] + points0_[t[3]]) - o;
+                const vector et(n ^ r);
+                if (mag(et) < 1e-9*max(1.0, mag(r)))
+                {
+                    FatalIOErrorInFunction(f)
+                        << "Entry 'fibres' in " << dict_.name()
+                        << ": element " << e << " has its centroid on the"
+                        << " axis, where the circumferential direction is"
+                        << " undefined" << exit(FatalIOError);
+                }
+                a[e] = toVec3(et/mag(et));
+            }
+        }
+        else
+        {
+            FatalIOErrorInFunction(f)
+                << "Unknown fibre layout '" << layout << "' in " << f.name()
+                << nl << "    Valid types: (uniform cylindrical)"
+                << exit(FatalIOError);
+        }
+        guarded(f, "fibres", [&] { s.setFibreDirections(std::move(a)); });
+    }
+    else if (s.material().hasFibres())
+    {
+        FatalIOErrorInFunction(dict_)
+            << "Entry 'fibres' missing in " << dict_.name() << ": material "
+            << s.material().name() << " needs fibre directions"
+            << exit(FatalIOError);
+    }
+
+    // Fixed node sets
+    if (dict_.found("fixed"))
+    {
+        const dictionary& f = dict_.subDict("fixed");
+        for (const entry& e : f)
+        {
+            nodeSet(e.keyword(), f, e.keyword());
+            const std::array<bool, 3> m =
+                componentMask(f.get<word>(e.keyword()), f, e.keyword());
+            guarded(f, e.keyword(), [&] { s.fix(e.keyword(), m); });
+        }
+    }
+
+    // Prescribed velocities of node sets
+    if (dict_.found("prescribedMotion"))
+    {
+        const dictionary& pm = dict_.subDict("prescribedMotion");
+        for (const entry& e : pm)
+        {
+            const dictionary& d = e.dict();
+            checkKeys(d, {"velocity", "components"});
+            nodeSet(e.keyword(), pm, e.keyword());
+            const std::array<bool, 3> m = componentMask
+            (
+                d.getOrDefault<word>("components", "xyz"), d, "components"
+            );
+            prescribed_.append(Function1<vector>::New("velocity", d));
+            const Function1<vector>* v = &prescribed_.last();
+            guarded(pm, e.keyword(), [&]
+            {
+                s.prescribeVelocity
+                (
+                    e.keyword(),
+                    [v](double t, const smoothedSolid::Vec3&)
+                    {
+                        return toVec3(v->value(t));
+                    },
+                    m
+                );
+            });
+        }
+    }
+
+    if (dict_.found("bodyForce"))
+    {
+        s.setBodyForce(toVec3(dict_.get<vector>("bodyForce")));
+    }
+
+    // Contact (paper Eq. 43)
+    if (dict_.found("contact"))
+    {
+        const dictionary& c = dict_.subDict("contact");
+        checkKeys
+        (
+            c, {"self", "dampingRatio", "stepFraction", "penaltyScale"}
+        );
+        smoothedSolid::ContactOptions co;
+        co.selfContact = c.getOrDefault<Switch>("self", false);
+        co.dampingRatio = c.getOrDefault<scalar>("dampingRatio", co.dampingRatio);
+        co.stepFraction = c.getOrDefault<scalar>("stepFraction", co.stepFraction);
+        co.penaltyScale = c.getOrDefault<scalar>("penaltyScale", co.penaltyScale);
+        guarded(dict_, "contact", [&] { s.enableContact(co); });
+    }
+    if (dict_.found("contactSurfaces"))
+    {
+        const dictionary& cs = dict_.subDict("contactSurfaces");
+        for (const entry& e : cs)
+        {
+            const dictionary& d = e.dict();
+            checkKeys(d, {"file", "flip"});
+            fileName f(d.get<fileName>("file"));
+            f.expand();
+            if (!f.isAbsolute())
+            {
+                f = runTime.globalPath()/f;
+            }
+            const bool flip = d.getOrDefault<Switch>("flip", false);
+            guarded(cs, e.keyword(), [&]
+            {
+                s.addRigidSurface(smoothedSolid::readRigidSurface(f, flip));
+            });
+        }
+    }
+
+    if (dict_.found("output"))
+    {
+        const dictionary& o = dict_.subDict("output");
+        checkKeys(o, {"directory"});
+        fileName dir(o.getOrDefault<fileName>("directory", "VTK/solid"));
+        if (!dir.isAbsolute())
+        {
+            dir = runTime.globalPath()/dir;
+        }
+        vtu_.reset(new smoothedSolid::VtuSeries(dir, "solid"));
+    }
+
+    fromSolid();
+}
+
+
+// * * * * * * * * * * * * * * * * Destructor  * * * * * * * * * * * * * * * //
+
+Foam::immersedSolids::deformable::~deformable()
+{}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::immersedSolids::deformable::advance(const scalar dt)
+{
+    std::vector<smoothedSolid::Vec3>& f = solid_->externalForce();
+    forAll(externalForce_, i)
+    {
+        f[i] = toVec3(externalForce_[i]);
+    }
+    try
+    {
+        lastSubSteps_ = solid_->advance(dt);
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalErrorInFunction
+            << "The immersed solid failed at time " << time_ << ": "
+            << err.what() << exit(FatalError);
+    }
+    time_ += dt;
+    fromSolid();
+}
+
+
+void Foam::immersedSolids::deformable::setState
+(
+    const pointField&,
+    const vectorField&
+)
+{
+    FatalErrorInFunction
+        << "A deformable immersed solid's configuration follows from its"
+        << " dynamics; it cannot be set directly"
+        << exit(FatalError);
+}
+
+
+Foam::tmp<Foam::scalarField>
+Foam::immersedSolids::deformable::lumpedMass() const
+{
+    const std::vector<double>& m = solid_->lumpedMass();
+    auto tmass = tmp<scalarField>::New(label(m.size()));
+    forAll(tmass(), i)
+    {
+        tmass.ref()[i] = m[i];
+    }
+    return tmass;
+}
+
+
+void Foam::immersedSolids::deformable::write() const
+{
+    if (vtu_ && runTime_.writeTime() && Pstream::master())
+    {
+        vtu_->write(*solid_);
+    }
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,169 @@
+/*---------------------------------------------------------------------------*\
+    isfem: immersed smoothed finite element method (fsiCoupling)
+\*---------------------------------------------------------------------------*/
+
+// The solid library first (Eigen), then OpenFOAM
+#include "mesh/TetMesh.hpp"
+
+#include "immersedSolid.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+    defineTypeNameAndDebug(immersedSolid, 0);
+    defineRunTimeSelectionTable(immersedSolid, dictionary);
+}
+
+
+// * * * * * * * * * * * * Protected Member Functions  * * * * * * * * * * * //
+
+void Foam::immersedSolid::checkKeywords
+(
+    const dictionary& dict,
+    const wordList& allowed
+) const
+{
+    for (const entry& e : dict)
+    {
+        const word& key = e.keyword();
+        if
+        (
+            key == "FoamFile"
+         || (&dict == &dict_ && key == "coupling")
+         || allowed.found(key)
+        )
+        {
+            continue;
+        }
+        FatalIOErrorInFunction(dict)
+            << "Unknown keyword '" << key << "' in " << dict.name()
+            << " (file " << dict_.objectPath() << ")" << nl
+            << "    Valid keywords: " << flatOutput(allowed)
+            << exit(FatalIOError);
+    }
+}
+
+
+Foam::fileName Foam::immersedSolid::meshFile() const
+{
+    fileName f(dict_.get<fileName>("mesh"));
+    f.expand();
+    if (!f.isAbsolute())
+    {
+        f = runTime_.globalPath()/f;
+    }
+    return f;
+}
+
+
+void Foam::immersedSolid::readMesh()
+{
+    const fileName f(meshFile());
+    if (!isFile(f))
+    {
+        FatalIOErrorInFunction(dict_)
+            << "The solid mesh file " << f << " of entry 'mesh' does not exist"
+            << exit(FatalIOError);
+    }
+
+    try
+    {
+        const smoothedSolid::TetMesh mesh =
+            smoothedSolid::TetMesh::fromGmsh(f);
+
+        points0_.setSize(mesh.nNodes());
+        forAll(points0_, i)
+        {
+            const smoothedSolid::Vec3& X = mesh.coordinates()[i];
+            points0_[i] = point(X(0), X(1), X(2));
+        }
+        elements_.setSize(mesh.nElements());
+        forAll(elements_, e)
+        {
+            for (label k = 0; k < 4; ++k)
+            {
+                elements_[e][k] = mesh.elements()[e][k];
+            }
+        }
+        nodeSets_.clear();
+        for (const std::string& name : mesh.nodeSetNames())
+        {
+            const std::vector<int>& s = mesh.nodeSet(name);
+            labelList l(label(s.size()));
+            forAll(l, i) { l[i] = s[i]; }
+            nodeSets_.insert(word(name), l);
+        }
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "Cannot read the solid mesh of entry 'mesh': " << f << nl
+            << "    " << err.what()
+            << exit(FatalIOError);
+    }
+
+    points_ = points0_;
+    velocities_.setSize(points0_.size(), Zero);
+    externalForce_.setSize(points0_.size(), Zero);
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::immersedSolid::immersedSolid
+(
+    const Time& runTime,
+    const IOdictionary& dict
+)
+:
+    runTime_(runTime),
+    dict_(dict),
+    time_(runTime.value())
+{
+    readMesh();
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+const Foam::labelList& Foam::immersedSolid::nodeSet
+(
+    const word& name,
+    const dictionary& dict,
+    const word& keyword
+) const
+{
+    const auto iter = nodeSets_.cfind(name);
+    if (!iter.found())
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry '" << keyword << "' in " << dict.name()
+            << ": the solid mesh " << meshFile()
+            << " has no physical group '" << name << "'" << nl
+            << "    Node sets: " << flatOutput(nodeSets_.sortedToc())
+            << exit(FatalIOError);
+    }
+    return *iter;
+}
+
+
+void Foam::immersedSolid::setState
+(
+    const pointField& points,
+    const vectorField& velocities
+)
+{
+    if (points.size() != nPoints() || velocities.size() != nPoints())
+    {
+        FatalErrorInFunction
+            << "Expected " << nPoints() << " points and velocities, got "
+            << points.size() << " and " << velocities.size()
+            << exit(FatalError);
+    }
+    points_ = points;
+    velocities_ = velocities;
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,736 @@
+/*---------------------------------------------------------------------------*\
+    isfem: test of fsiCoupling (immersed solid, FSI pairs, interpolation)
+-------------------------------------------------------------------------------
+Application
+    testImmersedCoupling
+
+Description
+    Run in a case with a fluid mesh and constant/solidProperties:
+
+        -test solid    the solid object: sizes, rigid motion against the
+                       analytic positions, a deformable solid's advance
+        -test force    a free deformable solid under a nodal external force:
+                       momentum against the impulse
+        -test pairs    F-S and S-F pairs against brute force (every cell
+                       with the same inside test) for random placements
+        -test walk     mean walk steps per node per step while the (rigid)
+                       solid moves by its prescribed motion
+        -test interp   both interpolation directions on linear fields
+        -test coverage covered cells of a (thin) solid where it is, against
+                       the cells a dense lattice of its points lies in
+        -test coupling the immersedCoupling object over 5 steps of the rigid
+                       motion: transfers exact for linear fields
+        -test outside  the solid shifted by -shift (x y z): must stop with
+                       a FatalError
+
+    Prints 'measured ... reference ... tolerance' lines and 'PASS'/'FAIL';
+    exits non-zero on FAIL.
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "immersedSolid.H"
+#include "immersedCoupling.H"
+#include "deformableSolid.H"
+#include "immersedPairs.H"
+#include "immersedInterpolation.H"
+#include "interpolation.H"
+#include "Random.H"
+#include "Function1.H"
+#include "calculatedFvPatchField.H"
+#include "meshSearch.H"
+#include "polyMeshTetDecomposition.H"
+
+using namespace Foam;
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+static bool allPassed = true;
+
+void check
+(
+    const word& what,
+    const scalar measured,
+    const scalar reference,
+    const scalar tol,
+    const bool pass
+)
+{
+    Info<< "    " << what << ": measured " << measured
+        << "  reference " << reference << "  tolerance " << tol
+        << (pass ? "  PASS" : "  FAIL") << endl;
+    allPassed = allPassed && pass;
+}
+
+
+// Random rotation (Rodrigues) of angle in [0, pi) about a random axis
+tensor randomRotation(Random& rnd)
+{
+    vector k(rnd.sample01<vector>() - vector::uniform(0.5));
+    k /= mag(k) + ROOTVSMALL;
+    const scalar t = constant::mathematical::pi*rnd.sample01<scalar>();
+    const tensor K(0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0);
+    return Foam::cos(t)*I + Foam::sin(t)*K + (1 - Foam::cos(t))*sqr(k);
+}
+
+
+// Brute force F-S: first cell whose bounding box holds p and which contains
+// it by the same inside test
+label bruteCell
+(
+    const immersedPairs& pairs,
+    const List<boundBox>& cellBb,
+    const point& p
+)
+{
+    forAll(cellBb, c)
+    {
+        if (cellBb[c].contains(p) && pairs.inside(p, c))
+        {
+            return c;
+        }
+    }
+    return -1;
+}
+
+
+int main(int argc, char *argv[])
+{
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | outside");
+    argList::addOption("placements", "N", "random placements (pairs)");
+    argList::addOption("steps", "N", "motion steps (walk)");
+    argList::addOption("shift", "vector", "translation (outside)");
+
+    #include "setRootCase.H"
+    #include "createTime.H"
+    #include "createMesh.H"
+
+    const word test(args.get<word>("test"));
+    const IOdictionary props
+    (
+        IOobject
+        (
+            "solidProperties",
+            runTime.constant(),
+            runTime,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+    autoPtr<immersedSolid> solidPtr(immersedSolid::New(runTime, props));
+    immersedSolid& solid = *solidPtr;
+
+    const dictionary couplingDict
+    (
+        props.subOrEmptyDict("coupling")
+    );
+
+    Info<< "solid: " << solid.nPoints() << " nodes, " << solid.nElements()
+        << " elements; fluid: " << mesh.nCells() << " cells" << nl << endl;
+
+    const pointField& C = mesh.cellCentres();
+    const point solidCentre(average(solid.points0()));
+
+    if (test == "solid")
+    {
+        // Rigid: positions after advancing against the analytic motion
+        // (the case's solidProperties: translation + rotation)
+        if (!solid.isDeformable())
+        {
+            const dictionary& m = props.subDict("motion");
+            const vector v(Function1<vector>::New("velocity", m)->value(0));
+            const point o(m.get<point>("origin"));
+            vector k(m.get<vector>("axis"));
+            k /= mag(k);
+            const scalar w = Function1<scalar>::New("omega", m)->value(0);
+            const scalar dt = 0.01;
+            const label n = 10;
+            for (label i = 0; i < n; ++i)
+            {
+                solid.advance(dt);
+            }
+            const scalar T = n*dt;
+            const scalar th = w*T;
+            const tensor K(0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0);
+            const tensor R(Foam::cos(th)*I + Foam::sin(th)*K + (1 - Foam::cos(th))*sqr(k));
+            scalar err = 0, errV = 0;
+            forAll(solid.points(), i)
+            {
+                const point x(o + v*T + (R & (solid.points0()[i] - o)));
+                const vector u(v + w*(k ^ (x - o - v*T)));
+                err = max(err, mag(x - solid.points()[i]));
+                errV = max(errV, mag(u - solid.velocities()[i]));
+            }
+            check("rigid position error", err, 0, 1e-12, err < 1e-12);
+            check("rigid velocity error", errV, 0, 1e-12, errV < 1e-12);
+        }
+        else
+        {
+            // Deformable at rest, no load: stays at rest
+            const scalar dt = 1e-4;
+            solid.advance(dt);
+            const scalar d = max(mag(solid.points() - solid.points0()));
+            check("deformable at rest, max displacement", d, 0, 1e-12, d < 1e-12);
+            check("deformable time", solid.time(), dt, 1e-15,
+                mag(solid.time() - dt) < 1e-15);
+        }
+    }
+    else if (test == "force")
+    {
+        // A free deformable solid under a constant nodal external force
+        // (total F) for T: central difference momentum
+        //   sum m v^{N-1/2} = F (T - h_N/2),  h_N the last sub-step,
+        // so sum m v/(F T) lies in [1 - 1/(2 N') , 1] with N' = T/h_N;
+        // checked: |sum m v/(F T) - 1| <= 1/N (N sub-steps, h_N <= 2T/N)
+        immersedSolids::deformable& d =
+            refCast<immersedSolids::deformable>(solid);
+        const vector F(0.6, -0.3, 0.2);
+        solid.externalForce() = F/scalar(solid.nPoints());
+        const scalar T = 0.05;
+        solid.advance(T);
+        const scalarField m(d.lumpedMass());
+        const vector P(sum(m*solid.velocities()));
+        const label N = d.lastSubSteps();
+        const scalar ratio = (P & F)/(magSqr(F)*T);
+        const scalar perp = mag(P - ((P & F)/magSqr(F))*F)/(mag(F)*T);
+        Info<< "sub-steps " << N << ", total mass " << sum(m) << endl;
+        check("sum m v / (F T)", ratio, 1, 1.0/N, mag(ratio - 1) <= 1.0/N);
+        check("momentum across F / (|F| T)", perp, 0, 1e-10, perp < 1e-10);
+        check("sub-cycled (sub-steps > 1)", N, 2, 0, N > 1);
+        const vector Fsum(sum(d.externalForce()));
+        Info<< "    total external force " << Fsum << endl;
+    }
+    else if (test == "pairs")
+    {
+        immersedPairs pairs(mesh, couplingDict);
+        const label nPlace = args.getOrDefault<label>("placements", 10);
+
+        List<boundBox> cellBb(mesh.nCells());
+        forAll(cellBb, c)
+        {
+            cellBb[c] = boundBox(mesh.points(), mesh.cellPoints()[c], false);
+            cellBb[c].inflate(1e-9);
+        }
+
+        const boundBox meshBb(mesh.points(), true);
+        Random rnd(42);
+        label nodesTotal = 0, nodesEqual = 0;
+        label sfTotal = 0, sfEqual = 0, sfBrute = 0;
+        scalar wErr = 0;
+        label steps = 0, walks = 0, fallback = 0;
+        for (label k = 0; k < nPlace; ++k)
+        {
+            // Random rotation about the solid's centre and a random centre
+            // in the middle half of the fluid box
+            const tensor R(randomRotation(rnd));
+            const point c
+            (
+                meshBb.min()
+              + cmptMultiply
+                (
+                    vector::uniform(0.3) + 0.4*rnd.sample01<vector>(),
+                    meshBb.span()
+                )
+            );
+            pointField x(c + (R & (solid.points0() - solidCentre)));
+
+            pairs.findNodeCells(x);
+            steps += pairs.nSteps();
+            walks += pairs.nWalks();
+            fallback += pairs.nFallback();
+            forAll(x, i)
+            {
+                ++nodesTotal;
+                if (bruteCell(pairs, cellBb, x[i]) == pairs.nodeCells()[i])
+                {
+                    ++nodesEqual;
+                }
+            }
+
+            pairs.findCoveredCells(x, solid.elements());
+            labelList cellSlot(mesh.nCells(), -1);
+            forAll(pairs.coveredCells(), s)
+            {
+                if (pairs.centreInside()[s])
+                {
+                    cellSlot[pairs.coveredCells()[s]] = s;
+                }
+            }
+            // Brute force: every cell against every element, lowest first
+            forAll(C, celli)
+            {
+                label found = -1;
+                immersedPairs::tetWeights wf;
+                forAll(solid.elements(), e)
+                {
+                    const solidTet& t = solid.elements()[e];
+                    const immersedPairs::tetWeights w
+                    (
+                        immersedPairs::barycentric
+                        (
+                            C[celli], x[t[0]], x[t[1]], x[t[2]], x[t[3]]
+                        )
+                    );
+                    if (immersedPairs::insideTet(w))
+                    {
+                        found = e;
+                        wf = w;
+                        break;
+                    }
+                }
+                const label s = cellSlot[celli];
+                if (found >= 0)
+                {
+                    ++sfBrute;
+                }
+                if (found >= 0 || s >= 0)
+                {
+                    ++sfTotal;
+                    if
+                    (
+                        found >= 0 && s >= 0
+                     && pairs.coveringElement()[s] == found
+                    )
+                    {
+                        ++sfEqual;
+                        for (label a = 0; a < 4; ++a)
+                        {
+                            wErr = max(wErr, mag(wf[a] - pairs.weights()[s][a]));
+                        }
+                    }
+                }
+            }
+        }
+        // Sums over ranks (in parallel each rank checks its own cells; a
+        // node is counted as equal on a rank when both searches agree there)
+        reduce(nodesTotal, sumOp<label>());
+        reduce(nodesEqual, sumOp<label>());
+        reduce(sfTotal, sumOp<label>());
+        reduce(sfEqual, sumOp<label>());
+        reduce(sfBrute, sumOp<label>());
+        reduce(wErr, maxOp<scalar>());
+        reduce(steps, sumOp<label>());
+        reduce(walks, sumOp<label>());
+        reduce(fallback, sumOp<label>());
+        Info<< "F-S: " << nodesTotal << " nodes in " << nPlace
+            << " placements; walks " << walks << ", neighbour steps "
+            << steps << ", octree fallbacks " << fallback << nl
+            << "S-F: " << sfBrute << " covered cells by brute force" << endl;
+        check("F-S pairs equal to brute force [%]",
+            100.0*nodesEqual/max(nodesTotal, 1), 100, 0, nodesEqual == nodesTotal);
+        check("S-F pairs equal to brute force [%]",
+            100.0*sfEqual/max(sfTotal, 1), 100, 0,
+            sfEqual == sfTotal && sfBrute > 0);
+        check("S-F weights max difference", wErr, 0, 1e-12, wErr < 1e-12);
+    }
+    else if (test == "walk")
+    {
+        immersedPairs pairs(mesh, couplingDict);
+        const label n = args.getOrDefault<label>("steps", 50);
+        const scalar dt = runTime.deltaTValue();
+
+        // Mean cell size and the solid's displacement per step
+        const scalar h = Foam::cbrt(gAverage(mesh.V()));
+        pairs.findNodeCells(solid.points());
+        pointField xOld(solid.points());
+        label steps = 0, walks = 0, fallback = 0, left = 0;
+        scalar moved = 0;
+        for (label k = 0; k < n; ++k)
+        {
+            solid.advance(dt);
+            moved += max(mag(solid.points() - xOld));
+            xOld = solid.points();
+            pairs.findNodeCells(solid.points());
+            steps += pairs.nSteps();
+            walks += pairs.nWalks();
+            fallback += pairs.nFallback();
+            left += pairs.nLeft();
+        }
+        reduce(steps, sumOp<label>());
+        reduce(walks, sumOp<label>());
+        reduce(fallback, sumOp<label>());
+        reduce(left, sumOp<label>());
+        Info<< "walks that left the rank through a processor face "
+            << "(then searched by the octree): " << left << endl;
+        Info<< "mean cell size " << h << ", largest node displacement per"
+            << " step " << moved/n << " (" << moved/n/h << " cells)" << nl
+            << "walks " << walks << ", neighbour steps " << steps
+            << ", octree fallbacks " << fallback << endl;
+        const scalar mean = scalar(steps)/max(walks, 1);
+        check("mean walk steps per node per step", mean, 2, 2, mean <= 2);
+        check("octree fallbacks (not counting processor faces)",
+            fallback, 0, 0, fallback == 0);
+    }
+    else if (test == "interp")
+    {
+        immersedPairs pairs(mesh, couplingDict);
+
+        // Solid placed at the middle of the fluid box
+        const boundBox meshBb(mesh.points(), true);
+        const pointField x(solid.points0() - solidCentre + meshBb.centre());
+        pairs.findNodeCells(x);
+        pairs.findCoveredCells(x, solid.elements());
+
+        // Linear fields
+        const scalar p0 = 1.5;
+        const vector gp(2, -3, 0.5);
+        const vector U0(1, 2, 3);
+        const tensor gU(0.5, -1, 2, 1.5, 0.25, -0.75, -2, 1, 0.3);
+        auto pExact = [&](const point& y) { return p0 + (gp & y); };
+        auto UExact = [&](const point& y) { return U0 + (gU & y); };
+
+        volScalarField p
+        (
+            IOobject("p", runTime.timeName(), mesh),
+            mesh,
+            dimensionedScalar(dimless, Zero),
+            calculatedFvPatchField<scalar>::typeName
+        );
+        volVectorField U
+        (
+            IOobject("U", runTime.timeName(), mesh),
+            mesh,
+            dimensionedVector(dimless, Zero),
+            calculatedFvPatchField<vector>::typeName
+        );
+        forAll(C, c)
+        {
+            p[c] = pExact(C[c]);
+            U[c] = UExact(C[c]);
+        }
+        forAll(mesh.boundary(), patchi)
+        {
+            if (mesh.boundary()[patchi].coupled())
+            {
+                continue;
+            }
+            const vectorField& Cf = mesh.boundary()[patchi].Cf();
+            fvPatchScalarField& pp = p.boundaryFieldRef()[patchi];
+            fvPatchVectorField& Up = U.boundaryFieldRef()[patchi];
+            forAll(Cf, f)
+            {
+                pp[f] = pExact(Cf[f]);
+                Up[f] = UExact(Cf[f]);
+            }
+        }
+
+        // Processor patches: the neighbour rank's cell values
+        p.correctBoundaryConditions();
+        U.correctBoundaryConditions();
+
+        scalar pMax = 0, UMax = 0;
+        forAll(x, i)
+        {
+            pMax = max(pMax, mag(pExact(x[i])));
+            UMax = max(UMax, mag(UExact(x[i])));
+        }
+
+        const wordList schemes({"cellLinear", "cellPoint"});
+        for (const word& scheme : schemes)
+        {
+            autoPtr<interpolation<scalar>> pI
+            (
+                interpolation<scalar>::New(scheme, p)
+            );
+            autoPtr<interpolation<vector>> UI
+            (
+                interpolation<vector>::New(scheme, U)
+            );
+            const scalarField ps
+            (
+                immersedInterpolation::fluidToSolid(*pI, x, pairs.nodeCells())
+            );
+            const vectorField Us
+            (
+                immersedInterpolation::fluidToSolid(*UI, x, pairs.nodeCells())
+            );
+            scalar ep = 0, eU = 0;
+            forAll(x, i)
+            {
+                ep = max(ep, mag(ps[i] - pExact(x[i])));
+                eU = max(eU, mag(Us[i] - UExact(x[i])));
+            }
+            ep /= pMax;
+            eU /= UMax;
+            if (scheme == "cellLinear")
+            {
+                check("fluid->solid p (cellLinear) max rel. error", ep, 0, 1e-10, ep < 1e-10);
+                check("fluid->solid U (cellLinear) max rel. error", eU, 0, 1e-10, eU < 1e-10);
+            }
+            else
+            {
+                Info<< "    fluid->solid with " << scheme
+                    << " (information, not exact): p max rel. error " << ep
+                    << ", U " << eU << endl;
+            }
+        }
+
+        // Solid -> fluid: nodal velocities of the linear field
+        vectorField vs(x.size());
+        forAll(x, i)
+        {
+            vs[i] = UExact(x[i]);
+        }
+        const vectorField vf
+        (
+            immersedInterpolation::solidToFluid(pairs, solid.elements(), vs)
+        );
+        scalar e = 0;
+        forAll(vf, k)
+        {
+            e = max(e, mag(vf[k] - UExact(C[pairs.coveredCells()[k]])));
+        }
+        reduce(e, maxOp<scalar>());
+        e /= UMax;
+        const label nCovered = returnReduce(vf.size(), sumOp<label>());
+        Info<< "    covered cells (all ranks): " << nCovered << endl;
+        check("solid->fluid U max rel. error", e, 0, 1e-10,
+            e < 1e-10 && nCovered > 0);
+
+        // Every node owned by exactly one rank
+        labelList owners(x.size(), 0);
+        forAll(owners, i)
+        {
+            owners[i] = (pairs.nodeCells()[i] >= 0 ? 1 : 0);
+        }
+        Pstream::listCombineGather(owners, plusEqOp<label>());
+        Pstream::listCombineScatter(owners);
+        label nBad = 0;
+        forAll(owners, i)
+        {
+            if (owners[i] != 1)
+            {
+                ++nBad;
+            }
+        }
+        check("nodes not owned by exactly one rank", nBad, 0, 0, nBad == 0);
+    }
+    else if (test == "coverage")
+    {
+        // A thin solid where it is (e.g. a plate thinner than the cells):
+        // the cells its interior passes through, found by a dense lattice
+        // (16 intervals per edge) of points in every element, against the
+        // covered cells of 'centre' and 'touching' coverage
+        const pointField& x = solid.points();
+        meshSearch ms(mesh, polyMesh::CELL_TETS);
+        labelHashSet crossed;
+        const label m = 16;
+        for (const solidTet& t : solid.elements())
+        {
+            for (label i = 0; i <= m; ++i)
+            for (label j = 0; i + j <= m; ++j)
+            for (label k = 0; i + j + k <= m; ++k)
+            {
+                const label l = m - i - j - k;
+                const point p
+                (
+                    (i*x[t[0]] + j*x[t[1]] + k*x[t[2]] + l*x[t[3]])/scalar(m)
+                );
+                const label c = ms.findCell(p, -1, true);
+                if (c >= 0)
+                {
+                    crossed.insert(c);
+                }
+            }
+        }
+        const label nCrossed = returnReduce(crossed.size(), sumOp<label>());
+        Info<< "cells the solid passes through (dense lattice): " << nCrossed
+            << endl;
+
+        for (const word cov : {"centre", "touching"})
+        {
+            dictionary d;
+            d.add("coverage", cov);
+            immersedPairs pairs(mesh, d);
+            pairs.findNodeCells(x);
+            pairs.findCoveredCells(x, solid.elements());
+            labelHashSet covered(pairs.coveredCells());
+            label nHit = 0;
+            for (const label c : crossed)
+            {
+                if (covered.found(c))
+                {
+                    ++nHit;
+                }
+            }
+            reduce(nHit, sumOp<label>());
+            const label nCov =
+                returnReduce(pairs.coveredCells().size(), sumOp<label>());
+            const scalar pct = 100.0*nHit/max(nCrossed, 1);
+            Info<< "coverage " << cov << ": " << nCov << " covered cells"
+                << endl;
+            if (cov == "touching")
+            {
+                // Brute force: every (cell, element) pair whose bounding
+                // boxes overlap, by the same tet-tet test
+                List<treeBoundBox> cellBb(mesh.nCells());
+                forAll(cellBb, c)
+                {
+                    cellBb[c] = treeBoundBox
+                    (
+                        boundBox(mesh.points(), mesh.cellPoints()[c], false)
+                    );
+                }
+                labelHashSet brute;
+                forAll(solid.elements(), e)
+                {
+                    const solidTet& t = solid.elements()[e];
+                    const FixedList<point, 4> A
+                        ({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
+                    treeBoundBox eb(A[0], A[0]);
+                    for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
+                    forAll(cellBb, c)
+                    {
+                        if (brute.found(c) || !cellBb[c].overlaps(eb))
+                        {
+                            continue;
+                        }
+                        const immersedPairs::tetWeights w
+                        (
+                            immersedPairs::barycentric(C[c], A[0], A[1], A[2], A[3])
+                        );
+                        bool hit = immersedPairs::insideTet(w);
+                        for
+                        (
+                            const tetIndices& ti
+                          : polyMeshTetDecomposition::cellTetIndices(mesh, c)
+                        )
+                        {
+                            if (hit) break;
+                            const tetPointRef tp(ti.tet(mesh));
+                            hit = immersedPairs::tetsIntersect
+                            (
+                                A, FixedList<point, 4>({tp.a(), tp.b(), tp.c(), tp.d()})
+                            );
+                        }
+                        if (hit)
+                        {
+                            brute.insert(c);
+                        }
+                    }
+                }
+                label nSame = 0;
+                for (const label c : brute)
+                {
+                    if (covered.found(c)) ++nSame;
+                }
+                const label nBrute = returnReduce(brute.size(), sumOp<label>());
+                const label nOct = returnReduce(covered.size(), sumOp<label>());
+                reduce(nSame, sumOp<label>());
+                const bool same = nSame == nBrute && nBrute == nOct;
+                Info<< "    touching: brute force " << nBrute
+                    << " cells, octree " << nOct << endl;
+                check("touching: covered cells equal to brute force [%]",
+                    100.0*nSame/max(max(nBrute, nOct), 1), 100, 0, same);
+                check("touching: crossed cells covered [%]", pct, 100, 0,
+                    nHit == nCrossed && nCrossed > 0);
+            }
+            else
+            {
+                Info<< "    centre (information, the thin-leaflet trap):"
+                    << " crossed cells covered " << pct << " %" << endl;
+            }
+        }
+    }
+    else if (test == "coupling")
+    {
+        // The coupling object through a few steps of the rigid solid's
+        // prescribed motion: pairs updated, transfers exact for linear
+        // fields (default interpolation cellLinear)
+        immersedCoupling coupling(mesh);
+        const scalar p0 = 1.5;
+        const vector gp(2, -3, 0.5);
+        volScalarField p
+        (
+            IOobject("p", runTime.timeName(), mesh),
+            mesh,
+            dimensionedScalar(dimless, Zero),
+            calculatedFvPatchField<scalar>::typeName
+        );
+        forAll(C, c)
+        {
+            p[c] = p0 + (gp & C[c]);
+        }
+        forAll(mesh.boundary(), patchi)
+        {
+            if (!mesh.boundary()[patchi].coupled())
+            {
+                p.boundaryFieldRef()[patchi] ==
+                    p0 + (gp & mesh.boundary()[patchi].Cf());
+            }
+        }
+        p.correctBoundaryConditions();
+
+        Info<< "first search (octrees built): " << coupling.searchTime()
+            << " s" << endl;
+        const scalar t0 = coupling.searchTime();
+        scalar ep = 0, ev = 0;
+        label nCovered = 0;
+        const scalar dt = runTime.deltaTValue();
+        for (label k = 0; k < 5; ++k)
+        {
+            coupling.solid().advance(dt);
+            coupling.updatePairs();
+            const pointField& x = coupling.solid().points();
+            const scalarField ps(coupling.fluidToSolid(p));
+            forAll(x, i)
+            {
+                ep = max(ep, mag(ps[i] - p0 - (gp & x[i]))/p0);
+            }
+            // rigid motion: the velocity field is linear in space
+            const vectorField vf
+            (
+                coupling.solidToFluid(coupling.solid().velocities())
+            );
+            const labelUList& cells = coupling.pairs().coveredCells();
+            const dictionary& m = props.subDict("motion");
+            const vector v(Function1<vector>::New("velocity", m)->value(0));
+            const scalar w = Function1<scalar>::New("omega", m)->value(0);
+            const vector axis(normalised(m.get<vector>("axis")));
+            const point centre
+            (
+                m.get<point>("origin") + v*(coupling.solid().time())
+            );
+            forAll(vf, j)
+            {
+                if (!coupling.pairs().centreInside()[j])
+                {
+                    continue;   // touching: clamped weights, not exact
+                }
+                const vector exact(v + w*(axis ^ (C[cells[j]] - centre)));
+                ev = max(ev, mag(vf[j] - exact)/mag(v));
+            }
+            nCovered += vf.size();
+        }
+        reduce(ep, maxOp<scalar>());
+        reduce(ev, maxOp<scalar>());
+        reduce(nCovered, sumOp<label>());
+        Info<< "covered cells over 5 steps: " << nCovered << nl
+            << "search time per step " << (coupling.searchTime() - t0)/5
+            << " s, transfer time (5 steps) "
+            << coupling.transferTime() << " s" << endl;
+        check("coupling: fluid->solid p max rel. error", ep, 0, 1e-10, ep < 1e-10);
+        check("coupling: solid->fluid v max rel. error", ev, 0, 1e-10,
+            ev < 1e-10 && nCovered > 0);
+    }
+    else if (test == "outside")
+    {
+        immersedPairs pairs(mesh, couplingDict);
+        const vector shift(args.get<vector>("shift"));
+        pairs.findNodeCells(solid.points0() + shift);
+        Info<< "FAIL: no error for a solid outside the domain" << endl;
+        return 1;
+    }
+    else
+    {
+        FatalErrorInFunction
+            << "Unknown -test " << test << exit(FatalError);
+    }
+
+    Info<< nl << (allPassed ? "ALL PASS" : "SOME FAILED") << endl;
+    return allPassed ? 0 : 1;
+}
+
+
+// ************************************************************************* //
