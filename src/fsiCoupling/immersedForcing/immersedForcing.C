@@ -32,6 +32,8 @@ void Foam::fv::immersedForcing::update()
 
     immersedSolid& solid = coupling_.solid();
     const scalar dt = runTime.value() - solid.time();
+    velocity0_ = solid.velocities();
+    dt_ = dt;
     if (dt > 0)
     {
         solid.advance(dt);
@@ -50,6 +52,53 @@ void Foam::fv::immersedForcing::update()
         << ", covered cells " << returnReduce(pairs.coveredCells().size(),
                sumOp<label>())
         << endl;
+}
+
+
+void Foam::fv::immersedForcing::fictitiousFluidForce(const volScalarField& p)
+{
+    immersedSolid& solid = coupling_.solid();
+    const pointField& x = solid.points();
+    const vectorField& v = solid.velocities();
+    const List<solidTet>& elements = solid.elements();
+
+    // Eq. 45: nodal pressures (every rank has every node)
+    const scalarField ps(coupling_.fluidToSolid(p));
+
+    vectorField& f = solid.externalForce();
+    f.setSize(x.size());
+    f = Zero;
+    scalarField mass(x.size(), Zero);
+
+    for (const solidTet& e : elements)
+    {
+        const vector d1(x[e[1]] - x[e[0]]);
+        const vector d2(x[e[2]] - x[e[0]]);
+        const vector d3(x[e[3]] - x[e[0]]);
+        const tensor J(d1, d2, d3);     // rows
+        const scalar Ve = det(J)/6;
+
+        // Linear p in the element: J & grad p = (p1 - p0, p2 - p0, p3 - p0)
+        const vector dp
+        (
+            ps[e[1]] - ps[e[0]], ps[e[2]] - ps[e[0]], ps[e[3]] - ps[e[0]]
+        );
+        const vector gradp(inv(J) & dp);
+
+        for (const label n : e)
+        {
+            f[n] -= rhoFluid_*Ve/4*gradp;
+            mass[n] += Ve/4;
+        }
+    }
+
+    if (dt_ > 0 && velocity0_.size() == v.size())
+    {
+        f -= rhoFluid_*mass*(v - velocity0_)/dt_;
+    }
+
+    Info<< type() << ' ' << name_ << ": fictitious-fluid force on the"
+        << " solid " << sum(f) << ", solid volume " << sum(mass) << endl;
 }
 
 
@@ -81,6 +130,9 @@ Foam::fv::immersedForcing::immersedForcing
     ),
     coveredVelocity_(),
     updateIndex_(-1),
+    rhoFluid_(0),
+    velocity0_(),
+    dt_(0),
     rowScale_
     (
         // OptimisationSwitches of the case's controlDict, then etc/
@@ -134,6 +186,13 @@ void Foam::fv::immersedForcing::constrain
 }
 
 
+void Foam::fv::immersedForcing::correct(volVectorField& U)
+{
+    const word pName(coeffs_.getOrDefault<word>("p", "p"));
+    fictitiousFluidForce(mesh_.lookupObject<volScalarField>(pName));
+}
+
+
 bool Foam::fv::immersedForcing::read(const dictionary& dict)
 {
     if (option::read(dict))
@@ -141,6 +200,13 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         fieldNames_.resize(1);
         fieldNames_.first() = coeffs_.getOrDefault<word>("U", "U");
         applied_.setSize(fieldNames_.size(), false);
+        coeffs_.readEntry("rhoFluid", rhoFluid_);
+        if (rhoFluid_ <= 0)
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "rhoFluid " << rhoFluid_ << " is not positive"
+                << exit(FatalIOError);
+        }
         return true;
     }
     return false;
