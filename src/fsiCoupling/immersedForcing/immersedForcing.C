@@ -4,6 +4,7 @@
 
 #include "immersedForcing.H"
 #include "fvMatrices.H"
+#include "fvcGrad.H"
 #include "addToRunTimeSelectionTable.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
@@ -167,6 +168,7 @@ void Foam::fv::immersedForcing::constrain
 )
 {
     update();
+    unconstrained_.reset(new fvMatrix<vector>(eqn));
 
     const labelUList& cells = coupling_.pairs().coveredCells();
     eqn.setValues(cells, coveredVelocity_);
@@ -186,10 +188,35 @@ void Foam::fv::immersedForcing::constrain
 }
 
 
+Foam::vector Foam::fv::immersedForcing::fluidSource
+(
+    const volVectorField& U,
+    const volScalarField& p
+) const
+{
+    vector total(Zero);
+    if (unconstrained_.valid())
+    {
+        const volVectorField residual(unconstrained_() & U);
+        const volVectorField gradp(fvc::grad(p));
+        const scalarField& V = mesh_.V();
+        for (const label celli : coupling_.pairs().coveredCells())
+        {
+            total += rhoFluid_*V[celli]*(residual[celli] + gradp[celli]);
+        }
+    }
+    reduce(total, sumOp<vector>());
+    return total;
+}
+
+
 void Foam::fv::immersedForcing::correct(volVectorField& U)
 {
     const word pName(coeffs_.getOrDefault<word>("p", "p"));
-    fictitiousFluidForce(mesh_.lookupObject<volScalarField>(pName));
+    const volScalarField& p = mesh_.lookupObject<volScalarField>(pName);
+    fictitiousFluidForce(p);
+    Info<< type() << ' ' << name_ << ": momentum source on the fluid "
+        << fluidSource(U, p) << endl;
 }
 
 
