@@ -34,6 +34,7 @@
 //   damping       c                           mass-proportional [1/s]
 //   safety        0.8                         fraction of the stable step
 //   contact       [self] [dampingRatio 0.1] [stepFraction 0.5] [penaltyScale 2]
+//                 [depthFraction 0.5] [facingCosine 0.2]
 //                                             penalty contact between parts
 //                                             (and within them); see
 //                                             contact/PenaltyContact.hpp

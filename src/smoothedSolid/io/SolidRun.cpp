@@ -293,10 +293,13 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
             double* target = name == "dampingRatio"   ? &co.dampingRatio
                              : name == "stepFraction" ? &co.stepFraction
                              : name == "penaltyScale" ? &co.penaltyScale
+                             : name == "depthFraction" ? &co.depthFraction
+                             : name == "facingCosine"  ? &co.facingCosine
                                                       : nullptr;
             if (!target || i + 1 >= e->args.size()) {
-                case_.fail(*e, "expected [self] then 'dampingRatio z', 'stepFraction f' or "
-                               "'penaltyScale b' pairs, got '" + name + "'");
+                case_.fail(*e, "expected [self] then 'dampingRatio z', 'stepFraction f', "
+                               "'penaltyScale b', 'depthFraction d' or 'facingCosine c' pairs, got '" +
+                                   name + "'");
             }
             *target = case_.number(*e, i + 1);
         }

@@ -96,11 +96,16 @@ TEST(BadInput, CaseFileContactOptions)
     expectError([&] { SolidRun run(write("contactFraction", "contact stepFraction 1.5")); },
                 {"contactFraction.solid", "contact", "stepFraction"});
     // the options are taken
-    SolidRun ok(write("contactGood", "contact self dampingRatio 0 stepFraction 0.3 penaltyScale 3"));
+    expectError([&] { SolidRun run(write("contactDepth", "contact depthFraction 3")); },
+                {"contactDepth.solid", "contact", "depthFraction"});
+    SolidRun ok(write("contactGood", "contact self dampingRatio 0 stepFraction 0.3 penaltyScale 3 "
+                                     "depthFraction 1.5 facingCosine 0.4"));
     ASSERT_NE(ok.solid().contact(), nullptr);
     const ContactOptions& o = ok.solid().contact()->options();
     EXPECT_TRUE(o.selfContact);
     EXPECT_EQ(o.dampingRatio, 0.0);
     EXPECT_EQ(o.stepFraction, 0.3);
     EXPECT_EQ(o.penaltyScale, 3.0);
+    EXPECT_EQ(o.depthFraction, 1.5);
+    EXPECT_EQ(o.facingCosine, 0.4);
 }
