@@ -4,9 +4,41 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace smoothedSolid {
+
+namespace {
+
+// Rounds of w_dI <- w_dI (omega_I^2 / max_J omega_J^2)^(-1/2) on each
+// node's weights (scaleNode), while max_I omega_I^2 falls by more than
+// 0.02 % a round, keeping the best weights: omegas(w2) brings the bound up
+// to date with the weights, writes omega_I^2 and returns their maximum;
+// weights are the arrays saved and restored
+void balanceRounds(int iterations, const std::function<double(std::vector<double>&)>& omegas,
+                   const std::function<void(int, double)>& scaleNode,
+                   const std::vector<std::vector<double>*>& weights)
+{
+    std::vector<double> w2;
+    double best = omegas(w2);
+    std::vector<std::vector<double>> saved;
+    for (const auto* w : weights) saved.push_back(*w);
+    for (int it = 0; it < iterations && best > 0; ++it) {
+        for (int i = 0; i < static_cast<int>(w2.size()); ++i) {
+            if (w2[i] > 0) scaleNode(i, 1.0 / std::sqrt(w2[i] / best));
+        }
+        const double m = omegas(w2);
+        if (!(m < best)) break;
+        const bool converged = m > 0.9998 * best;
+        best = m;
+        for (std::size_t k = 0; k < weights.size(); ++k) saved[k] = *weights[k];
+        if (converged) break;
+    }
+    for (std::size_t k = 0; k < weights.size(); ++k) *weights[k] = std::move(saved[k]);
+}
+
+}  // namespace
 
 StableStepBound::StableStepBound(const Smoothing& smoothing, Formulation formulation,
                                  const std::vector<double>& mass, const Material& material,
@@ -96,41 +128,29 @@ void StableStepBound::updateN0()
 // bound under deformation.
 void StableStepBound::balance(const Material& material, int iterations)
 {
-    if (iterations <= 0) return;
-    const int nn = static_cast<int>(invMass_.size());
     std::vector<std::vector<Mat3>> identity;
     std::vector<const std::vector<Mat3>*> F;
     for (const Use& u : uses_) identity.emplace_back(u.volume.size(), Mat3::Identity());
     for (const auto& f : identity) F.push_back(&f);
-
-    std::vector<double> omega2;
-    double best = evaluate(material, F, omega2);
-    std::vector<std::vector<double>> bestWeight;
-    for (const Use& u : uses_) bestWeight.push_back(u.weight);
-    for (int it = 0; it < iterations; ++it) {
-        for (Use& u : uses_) {
-            for (int i = 0; i < nn; ++i) {
-                if (!(omega2[i] > 0)) continue;
-                const double scale = 1.0 / std::sqrt(omega2[i] / best);
+    std::vector<std::vector<double>*> weights;
+    for (Use& u : uses_) weights.push_back(&u.weight);
+    balanceRounds(
+        iterations,
+        [&](std::vector<double>& w2) {
+            updateN0();
+            return evaluate(material, F, w2);
+        },
+        [&](int i, double scale) {
+            for (Use& u : uses_) {
                 for (int j = u.start[i]; j < u.start[i + 1]; ++j) u.weight[u.entry[j]] *= scale;
             }
-        }
-        updateN0();
-        const double w2 = evaluate(material, F, omega2);
-        if (!(w2 < best)) break;
-        const bool converged = w2 > 0.9998 * best;  // less than 0.02 % gained
-        {
-            best = w2;
-            for (std::size_t k = 0; k < uses_.size(); ++k) bestWeight[k] = uses_[k].weight;
-        }
-        if (converged) break;
-    }
-    for (std::size_t k = 0; k < uses_.size(); ++k) uses_[k].weight = bestWeight[k];
+        },
+        weights);
     updateN0();
 }
 
 // The fibre operator's weights: initially each node's mass shared in
-// proportion to V_d c_dI^2, then balanced as in balance() for
+// proportion to V_d c_dI^2, then balanced the same way (balanceRounds) for
 // sum_d V_d (sum_I u_I c_dI)^2 alone (rho_d = V_d sum_I c_dI^2 / wf_dI)
 void StableStepBound::setFibres(const std::vector<const std::vector<Vec3>*>& a0)
 {
@@ -186,25 +206,16 @@ void StableStepBound::setFibres(const std::vector<const std::vector<Vec3>*>& a0)
             }
             return m;
         };
-        update();
-        std::vector<double> w2;
-        double best = omegas(w2);
-        std::vector<double> bestWeight = u.fibreWeight;
-        for (int it = 0; it < kBalanceIterations && best > 0; ++it) {
-            for (int i = 0; i < nn; ++i) {
-                if (!(w2[i] > 0)) continue;
-                const double scale = 1.0 / std::sqrt(w2[i] / best);
+        balanceRounds(
+            kBalanceIterations,
+            [&](std::vector<double>& w2) {
+                update();
+                return omegas(w2);
+            },
+            [&](int i, double scale) {
                 for (int j = u.start[i]; j < u.start[i + 1]; ++j) u.fibreWeight[u.entry[j]] *= scale;
-            }
-            update();
-            const double m = omegas(w2);
-            if (!(m < best)) break;
-            const bool converged = m > 0.999 * best;
-            best = m;
-            bestWeight = u.fibreWeight;
-            if (converged) break;
-        }
-        u.fibreWeight = bestWeight;
+            },
+            {&u.fibreWeight});
         update();
     }
 }
