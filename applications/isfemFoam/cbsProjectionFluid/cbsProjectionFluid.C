@@ -7,6 +7,7 @@
 #include "constrainHbyA.H"
 #include "constrainPressure.H"
 #include "adjustPhi.H"
+#include "immersedBoundary.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -115,7 +116,7 @@ Foam::cbsProjectionFluid::intermediateMomentum()
     if (control_.momentumPredictor())
     {
         // Only the pressure gradient of the last step: not the new one
-        Foam::solve(UEqn == -fvc::grad(p_));
+        Foam::solve(UEqn == -pressureGradient());
         fvOptions_.correct(U_);
     }
 
@@ -137,6 +138,18 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
       + fvc::interpolate(rAU)*fvc::ddtCorr(U_, phi_)
     );
 
+    // Immersed solid (fsiCoupling): its flux on the faces of the covered
+    // cells, no pressure flux through them (immersedBoundary.H)
+    const immersedBoundary* ib =
+        mesh_.findObject<immersedBoundary>(immersedBoundary::typeName);
+    surfaceScalarField rAUf("rAUf", fvc::interpolate(rAU));
+    if (ib)
+    {
+        // Step II's coefficient, zero on the faces of the covered cells
+        ib->constrainFlux(phiHbyA);
+        ib->constrainLaplacian(rAUf);
+    }
+
     if (p_.needReference())
     {
         adjustPhi(phiHbyA, U_, p_);
@@ -150,10 +163,16 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     {
         fvScalarMatrix pEqn
         (
-            fvm::laplacian(rAU, p_) == fvc::div(phiHbyA)
+            ib
+          ? fvm::laplacian(rAUf, p_) == fvc::div(phiHbyA)
+          : fvm::laplacian(rAU, p_) == fvc::div(phiHbyA)
         );
 
         pEqn.setReference(pRefCell_, pRefValue_);
+        if (ib)
+        {
+            ib->constrainPressure(pEqn, p_);
+        }
         pEqn.solve(mesh_.solver(p_.select(control_.finalInnerIter())));
 
         if (control_.finalNonOrthogonalIter())
@@ -165,10 +184,28 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
 
     continuityErrors();
 
+    if (ib)
+    {
+        ib->correctPressure(p_);
+    }
+
     // Step III (paper Eq. 39): velocity correction
-    U_ = HbyA - rAU*fvc::grad(p_);
+    U_ = HbyA - rAU*pressureGradient();
     U_.correctBoundaryConditions();
     fvOptions_.correct(U_);
+}
+
+
+Foam::tmp<Foam::volVectorField>
+Foam::cbsProjectionFluid::pressureGradient() const
+{
+    const immersedBoundary* ib =
+        mesh_.findObject<immersedBoundary>(immersedBoundary::typeName);
+    if (ib)
+    {
+        return ib->grad(p_);
+    }
+    return fvc::grad(p_);
 }
 
 

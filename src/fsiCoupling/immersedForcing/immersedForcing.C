@@ -5,6 +5,9 @@
 #include "immersedForcing.H"
 #include "fvMatrices.H"
 #include "fvcGrad.H"
+#include "singlePhaseTransportModel.H"
+#include "clockValue.H"
+#include "OSspecific.H"
 #include "addToRunTimeSelectionTable.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
@@ -29,20 +32,31 @@ void Foam::fv::immersedForcing::update()
     {
         return;
     }
+    writeDiagnostics();
     updateIndex_ = runTime.timeIndex();
+    stepIndex_ = runTime.timeIndex();
+    searchTime0_ = coupling_.searchTime();
+    transferTime0_ = coupling_.transferTime();
+    forceTime_ = 0;
 
     immersedSolid& solid = coupling_.solid();
     const scalar dt = runTime.value() - solid.time();
-    velocity0_ = solid.velocities();
-    dt_ = dt;
+    const clockValue start(true);
     if (dt > 0)
     {
         solid.advance(dt);
     }
+    advanceTime_ = double(start.elapsed());
     coupling_.updatePairs();
 
     const immersedPairs& pairs = coupling_.pairs();
     coveredVelocity_ = coupling_.solidToFluid(solid.velocities());
+
+    boundary_.update(pairs.coveredCells(), coveredVelocity_);
+    if (ghostWall_)
+    {
+        boundary_.locateWall(triSurface(surfaceTriangles_, solid.points()));
+    }
 
     scalarField& chi = coverage_.primitiveFieldRef();
     chi = 0;
@@ -56,50 +70,107 @@ void Foam::fv::immersedForcing::update()
 }
 
 
-void Foam::fv::immersedForcing::fictitiousFluidForce(const volScalarField& p)
+void Foam::fv::immersedForcing::fluidForce
+(
+    const volScalarField& p,
+    const volVectorField& U
+)
 {
     immersedSolid& solid = coupling_.solid();
-    const pointField& x = solid.points();
-    const vectorField& v = solid.velocities();
     const List<solidTet>& elements = solid.elements();
+    const immersedPairs& pairs = coupling_.pairs();
 
-    // Eq. 45: nodal pressures (every rank has every node)
-    const scalarField ps(coupling_.fluidToSolid(p));
+    const singlePhaseTransportModel& transport =
+        mesh_.lookupObject<singlePhaseTransportModel>("transportProperties");
+    const tmp<volScalarField> tnu(transport.nu());
 
+    // Traction on the staircase surface of the covered cells (pressure
+    // and viscous, Eqs. 44/48 boundary terms), per covered cell
+    const vectorField t(boundary_.traction(p, U, tnu(), rhoFluid_));
+
+    // To the solid nodes by the covered cell's shape-function weights
+    // (transpose of Eq. 52: the total is kept), summed over the ranks
     vectorField& f = solid.externalForce();
-    f.setSize(x.size());
+    f.setSize(solid.points().size());
     f = Zero;
-    scalarField mass(x.size(), Zero);
-
-    for (const solidTet& e : elements)
+    const labelUList& element = pairs.coveringElement();
+    const UList<immersedPairs::tetWeights>& w = pairs.weights();
+    forAll(t, i)
     {
-        const vector d1(x[e[1]] - x[e[0]]);
-        const vector d2(x[e[2]] - x[e[0]]);
-        const vector d3(x[e[3]] - x[e[0]]);
-        const tensor J(d1, d2, d3);     // rows
-        const scalar Ve = det(J)/6;
-
-        // Linear p in the element: J & grad p = (p1 - p0, p2 - p0, p3 - p0)
-        const vector dp
-        (
-            ps[e[1]] - ps[e[0]], ps[e[2]] - ps[e[0]], ps[e[3]] - ps[e[0]]
-        );
-        const vector gradp(inv(J) & dp);
-
-        for (const label n : e)
+        const solidTet& e = elements[element[i]];
+        for (label k = 0; k < 4; ++k)
         {
-            f[n] -= rhoFluid_*Ve/4*gradp;
-            mass[n] += Ve/4;
+            f[e[k]] += w[i][k]*t[i];
         }
     }
+    reduce(f, sumOp<vectorField>());
+    force_ = sum(f);
+}
 
-    if (dt_ > 0 && velocity0_.size() == v.size())
+void Foam::fv::immersedForcing::writeDiagnostics()
+{
+    if (stepIndex_ < 0)
     {
-        f -= rhoFluid_*mass*(v - velocity0_)/dt_;
+        return;
     }
+    const Time& runTime = mesh_.time();
+    const immersedPairs& pairs = coupling_.pairs();
 
-    Info<< type() << ' ' << name_ << ": fictitious-fluid force on the"
-        << " solid " << sum(f) << ", solid volume " << sum(mass) << endl;
+    const label nCovered =
+        returnReduce(pairs.coveredCells().size(), sumOp<label>());
+    const label nFaces = returnReduce(boundary_.nFaces(), sumOp<label>());
+    const label nSteps = returnReduce(pairs.nSteps(), sumOp<label>());
+    const label nWalks = returnReduce(pairs.nWalks(), sumOp<label>());
+    const label nFallback =
+        returnReduce(pairs.nFallback() + pairs.nLeft(), sumOp<label>());
+    const scalar magF = mag(force_);
+    const scalar magS = mag(source_);
+    const scalar imbalance =
+        mag(force_ + source_)/max(max(magF, magS), VSMALL);
+
+    if (Pstream::master())
+    {
+        if (!diagnostics_.valid())
+        {
+            const fileName dir
+            (
+                (Pstream::parRun() ? runTime.path()/".." : runTime.path())
+               /"postProcessing"/name_/runTime.timeName(runTime.startTime().value())
+            );
+            mkDir(dir);
+            diagnostics_.reset(new OFstream(dir/"immersedForcing.dat"));
+            diagnostics_()
+                << "# immersedForcing " << name_ << " (fsiCoupling): per time"
+                << " step" << nl
+                << "# force: of the fluid on the solid [N]; source: momentum"
+                << " source the fluid received in the covered cells [N]"
+                << nl
+                << "# imbalance = |force + source|/max(|force|, |source|)"
+                << nl
+                << "# slip = RMS |u - u_s| over covered cells / max |u_s|"
+                << " (RMS |u - u_s| [m/s] when the solid is at rest)" << nl
+                << "# walk = mean neighbour steps per solid node;"
+                << " fallback = octree searches" << nl
+                << "# times [s]: solid advance, pair search, transfers,"
+                << " force" << nl
+                << "# time Fx Fy Fz Sx Sy Sz imbalance slip coveredCells"
+                << " immersedFaces walk fallback tAdvance tSearch"
+                << " tTransfer tForce" << endl;
+        }
+        OFstream& os = diagnostics_();
+        os.precision(8);
+        os  << solidTime_ << ' '
+            << force_.x() << ' ' << force_.y() << ' ' << force_.z() << ' '
+            << source_.x() << ' ' << source_.y() << ' ' << source_.z() << ' '
+            << imbalance << ' ' << slip_ << ' '
+            << nCovered << ' ' << nFaces << ' '
+            << scalar(nSteps)/max(nWalks, 1) << ' ' << nFallback << ' '
+            << advanceTime_ << ' '
+            << coupling_.searchTime() - searchTime0_ << ' '
+            << coupling_.transferTime() - transferTime0_ << ' '
+            << forceTime_ << endl;
+    }
+    stepIndex_ = -1;
 }
 
 
@@ -132,8 +203,18 @@ Foam::fv::immersedForcing::immersedForcing
     coveredVelocity_(),
     updateIndex_(-1),
     rhoFluid_(0),
-    velocity0_(),
-    dt_(0),
+    boundary_(mesh),
+    force_(Zero),
+    ghostWall_(true),
+    source_(Zero),
+    slip_(0),
+    solidTime_(0),
+    advanceTime_(0),
+    forceTime_(0),
+    searchTime0_(0),
+    transferTime0_(0),
+    stepIndex_(-1),
+    diagnostics_(),
     rowScale_
     (
         // OptimisationSwitches of the case's controlDict, then etc/
@@ -147,15 +228,61 @@ Foam::fv::immersedForcing::immersedForcing
 {
     read(dict);
 
+    // The solid's surface: tet faces that belong to one tet only
+    {
+        HashTable<label, triFace, Hash<triFace>> count;
+        for (const solidTet& e : coupling_.solid().elements())
+        {
+            const triFace faces[4] =
+            {
+                triFace(e[1], e[2], e[3]), triFace(e[0], e[3], e[2]),
+                triFace(e[0], e[1], e[3]), triFace(e[0], e[2], e[1])
+            };
+            for (const triFace& f : faces)
+            {
+                // key: the sorted labels
+                triFace key(f);
+                std::sort(key.begin(), key.end());
+                ++count(key, 0);
+            }
+        }
+        DynamicList<labelledTri> tris(count.size());
+        forAllConstIters(count, iter)
+        {
+            if (iter.val() == 1)
+            {
+                const triFace& f = iter.key();
+                tris.append(labelledTri(f[0], f[1], f[2], 0));
+            }
+        }
+        surfaceTriangles_.transfer(tris);
+    }
+
     // Coverage of the initial configuration
     coupling_.updatePairs();
     coveredVelocity_ = coupling_.solidToFluid(coupling_.solid().velocities());
+    boundary_.update(coupling_.pairs().coveredCells(), coveredVelocity_);
+    if (ghostWall_)
+    {
+        boundary_.locateWall
+        (
+            triSurface(surfaceTriangles_, coupling_.solid().points())
+        );
+    }
     UIndirectList<scalar>
     (
         coverage_.primitiveFieldRef(), coupling_.pairs().coveredCells()
     ) = 1.0;
     coverage_.correctBoundaryConditions();
     updateIndex_ = mesh.time().timeIndex();
+}
+
+
+// * * * * * * * * * * * * * * * * Destructor  * * * * * * * * * * * * * * //
+
+Foam::fv::immersedForcing::~immersedForcing()
+{
+    writeDiagnostics();
 }
 
 
@@ -170,8 +297,17 @@ void Foam::fv::immersedForcing::constrain
     update();
     unconstrained_.reset(new fvMatrix<vector>(eqn));
 
+    // u_s in the covered cells, the ghost cells' value extrapolated through
+    // the wall (immersedBoundary::ghostVelocity)
     const labelUList& cells = coupling_.pairs().coveredCells();
-    eqn.setValues(cells, coveredVelocity_);
+    if (ghostWall_)
+    {
+        eqn.setValues(cells, boundary_.ghostVelocity(eqn.psi())());
+    }
+    else
+    {
+        eqn.setValues(cells, coveredVelocity_);
+    }
 
     // The covered rows are now decoupled (u = u_s); scaling their diagonal
     // and source together keeps u = u_s and makes 1/A small there, so the
@@ -198,7 +334,7 @@ Foam::vector Foam::fv::immersedForcing::fluidSource
     if (unconstrained_.valid())
     {
         const volVectorField residual(unconstrained_() & U);
-        const volVectorField gradp(fvc::grad(p));
+        const volVectorField gradp(boundary_.grad(p));
         const scalarField& V = mesh_.V();
         for (const label celli : coupling_.pairs().coveredCells())
         {
@@ -214,9 +350,28 @@ void Foam::fv::immersedForcing::correct(volVectorField& U)
 {
     const word pName(coeffs_.getOrDefault<word>("p", "p"));
     const volScalarField& p = mesh_.lookupObject<volScalarField>(pName);
-    fictitiousFluidForce(p);
-    Info<< type() << ' ' << name_ << ": momentum source on the fluid "
-        << fluidSource(U, p) << endl;
+    const clockValue start(true);
+    fluidForce(p, U);
+    source_ = fluidSource(U, p);
+    forceTime_ += double(start.elapsed());
+    solidTime_ = mesh_.time().value();
+
+    // Slip: covered cells and wall points (immersedBoundary::slip)
+    scalar sum2 = 0;
+    label n = 0;
+    boundary_.slip(U, sum2, n);
+    scalar maxUs = 0;
+    for (const vector& us : coveredVelocity_)
+    {
+        maxUs = max(maxUs, mag(us));
+    }
+    reduce(sum2, sumOp<scalar>());
+    reduce(n, sumOp<label>());
+    reduce(maxUs, maxOp<scalar>());
+    slip_ = Foam::sqrt(sum2/max(n, 1))/(maxUs > SMALL ? maxUs : 1);
+
+    Info<< type() << ' ' << name_ << ": force on the solid " << force_
+        << ", momentum source on the fluid " << source_ << endl;
 }
 
 
@@ -228,6 +383,14 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         fieldNames_.first() = coeffs_.getOrDefault<word>("U", "U");
         applied_.setSize(fieldNames_.size(), false);
         coeffs_.readEntry("rhoFluid", rhoFluid_);
+        const word wall(coeffs_.getOrDefault<word>("wall", "ghost"));
+        if (wall != "ghost" && wall != "staircase")
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "wall " << wall << " is not ghost or staircase"
+                << exit(FatalIOError);
+        }
+        ghostWall_ = (wall == "ghost");
         if (rhoFluid_ <= 0)
         {
             FatalIOErrorInFunction(coeffs_)
