@@ -7,6 +7,7 @@
 #include "fvcGrad.H"
 #include "singlePhaseTransportModel.H"
 #include "clockValue.H"
+#include "emptyPolyPatch.H"
 #include "OSspecific.H"
 #include "addToRunTimeSelectionTable.H"
 
@@ -339,6 +340,28 @@ Foam::vector Foam::fv::immersedForcing::fluidSource
         for (const label celli : coupling_.pairs().coveredCells())
         {
             total += rhoFluid_*V[celli]*(residual[celli] + gradp[celli]);
+        }
+
+        // Less the pressure of the domain's own boundary (walls, inlets)
+        // on covered cells that touch it: that force is between the solid
+        // and the boundary holding it, not between solid and fluid
+        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+        forAll(pbm, patchi)
+        {
+            if (pbm[patchi].coupled() || isA<emptyPolyPatch>(pbm[patchi]))
+            {
+                continue;
+            }
+            const labelUList& faceCells = pbm[patchi].faceCells();
+            const vectorField& Sf = mesh_.Sf().boundaryField()[patchi];
+            const scalarField& pb = p.boundaryField()[patchi];
+            forAll(faceCells, i)
+            {
+                if (boundary_.covered(faceCells[i]))
+                {
+                    total -= rhoFluid_*pb[i]*Sf[i];
+                }
+            }
         }
     }
     reduce(total, sumOp<vector>());
