@@ -39,6 +39,7 @@ void Foam::fv::immersedForcing::update()
     searchTime0_ = coupling_.searchTime();
     transferTime0_ = coupling_.transferTime();
     forceTime_ = 0;
+    wallTime_ = 0;
 
     immersedSolid& solid = coupling_.solid();
     const scalar dt = runTime.value() - solid.time();
@@ -56,7 +57,9 @@ void Foam::fv::immersedForcing::update()
     boundary_.update(pairs.coveredCells(), coveredVelocity_);
     if (ghostWall_)
     {
+        const clockValue wallStart(true);
         boundary_.locateWall(triSurface(surfaceTriangles_, solid.points()));
+        wallTime_ = double(wallStart.elapsed());
     }
 
     scalarField& chi = coverage_.primitiveFieldRef();
@@ -152,8 +155,8 @@ void Foam::fv::immersedForcing::writeDiagnostics()
                 << " (RMS |u - u_s| [m/s] when the solid is at rest)" << nl
                 << "# walk = mean neighbour steps per solid node;"
                 << " fallback = octree searches" << nl
-                << "# times [s]: solid advance, pair search, transfers,"
-                << " force" << nl
+                << "# times [s]: solid advance, pair search (F-S, S-F and"
+                << " the wall location), transfers, force and source" << nl
                 << "# time Fx Fy Fz Sx Sy Sz imbalance slip coveredCells"
                 << " immersedFaces walk fallback tAdvance tSearch"
                 << " tTransfer tForce" << endl;
@@ -167,7 +170,7 @@ void Foam::fv::immersedForcing::writeDiagnostics()
             << nCovered << ' ' << nFaces << ' '
             << scalar(nSteps)/max(nWalks, 1) << ' ' << nFallback << ' '
             << advanceTime_ << ' '
-            << coupling_.searchTime() - searchTime0_ << ' '
+            << coupling_.searchTime() - searchTime0_ + wallTime_ << ' '
             << coupling_.transferTime() - transferTime0_ << ' '
             << forceTime_ << endl;
     }
@@ -212,6 +215,7 @@ Foam::fv::immersedForcing::immersedForcing
     solidTime_(0),
     advanceTime_(0),
     forceTime_(0),
+    wallTime_(0),
     searchTime0_(0),
     transferTime0_(0),
     stepIndex_(-1),
