@@ -233,6 +233,19 @@ Foam::fv::immersedForcing::immersedForcing
 {
     read(dict);
 
+    if
+    (
+        mesh.findObject<immersedBoundary>(immersedBoundary::typeName)
+     != &boundary_
+    )
+    {
+        FatalIOErrorInFunction(dict)
+            << "fvOption " << name_ << ": a second immersedForcing option on"
+            << " mesh " << mesh.name() << "; one immersed solid per mesh is"
+            << " supported: put all solid parts in one constant/"
+            << "solidProperties mesh" << exit(FatalIOError);
+    }
+
     // The solid's surface: tet faces that belong to one tet only
     {
         HashTable<label, triFace, Hash<triFace>> count;
