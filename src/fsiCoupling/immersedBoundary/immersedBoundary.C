@@ -23,8 +23,7 @@ namespace Foam
 
 Foam::immersedBoundary::immersedBoundary
 (
-    const fvMesh& mesh,
-    const label nSweeps
+    const fvMesh& mesh
 )
 :
     regIOobject
@@ -47,7 +46,6 @@ Foam::immersedBoundary::immersedBoundary
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
     internalFaces_(),
     boundaryFaces_(),
-    nSweeps_(nSweeps),
     wallFraction_()
 {}
 
@@ -410,7 +408,12 @@ void Foam::immersedBoundary::constrainPressure
     // agglomerate that joins a covered cell and fluid cells (agglomeration
     // by face areas) then keeps the fluid cells' coarse operator; a large D
     // there acts as a spurious fixed value on the coarse levels (GAMG
-    // stalled at 1000 iterations with D = the mean diagonal)
+    // stalled at 1000 iterations with D = the mean diagonal).
+    // Fluid cells beside the solid get the same D added (D (p - p_old), a
+    // change of 1e-6 of a typical row): a pocket of fluid cells enclosed
+    // by covered cells (between the layers of a thin leaflet) has all its
+    // boundary faces' coefficients zero, and would otherwise be a singular
+    // block (zero rows for a single cell: GAMG divides by its diagonal).
     scalarField& diag = pEqn.diag();
     scalarField& source = pEqn.source();
     const scalar D = 1e-6*gAverage(diag);
@@ -418,6 +421,27 @@ void Foam::immersedBoundary::constrainPressure
     {
         diag[celli] = D;
         source[celli] = D*p[celli];
+    }
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    boolList done(mesh_.nCells(), false);
+    auto regularise = [&](const label celli)
+    {
+        if (!covered(celli) && !done[celli])
+        {
+            done[celli] = true;
+            diag[celli] += D;
+            source[celli] += D*p[celli];
+        }
+    };
+    for (const label facei : internalFaces_)
+    {
+        regularise(own[facei]);
+        regularise(nei[facei]);
+    }
+    for (const label facei : boundaryFaces_)
+    {
+        regularise(mesh_.faceOwner()[facei]);
     }
 }
 
@@ -462,45 +486,90 @@ Foam::tmp<Foam::surfaceScalarField> Foam::immersedBoundary::wallFaceValues
         }
     }
 
-    // Gauss gradient with those values, then local sweeps: the wall value
-    // extrapolated along the fluid cell's gradient, that cell's gradient
-    // updated by the change of its face value
+    // Gauss gradient g0 with those values. With the wall values
+    // p_F + (x_f - x_F).g on the immersed faces of a fluid cell F, its Gauss
+    // gradient satisfies g = g0 + M g, M = (1/V) sum_imm S_f (x_f - x_F)^T:
+    // solved cell by cell, g = (I - M)^-1 g0. Where I - M is near singular
+    // (the immersed faces surround the cell on opposite sides: no
+    // information across; det < 0.1, e.g. a cell between the two layers of
+    // a leaflet) the zero-gradient values are kept (g = g0).
     vectorField g(fvc::surfaceIntegrate(Sf*pf)().primitiveField());
 
-    for (label sweep = 0; sweep < nSweeps_; ++sweep)
+    tensorField M(mesh_.nCells(), Zero);
+    DynamicList<label> wallCells(internalFaces_.size());
+    boolList isWallCell(mesh_.nCells(), false);
+    auto addFace = [&](const label F, const vector& S, const point& xf)
     {
-        for (const label facei : internalFaces_)
+        M[F] += (S*(xf - C[F]))/V[F];
+        if (!isWallCell[F])
         {
-            const label o = own[facei];
-            const label n = nei[facei];
-            const bool oc = covered(o);
-            if (oc == covered(n))
-            {
-                continue;
-            }
-            const label F = oc ? n : o;
-            const scalar value = p[F] + ((Cf[facei] - C[F]) & g[F]);
-            const scalar change = value - pfI[facei];
-            pfI[facei] = value;
-            // Gauss: the owner gets +S_f p_f, the neighbour -S_f p_f
-            g[o] += change*Sf[facei]/V[o];
-            g[n] -= change*Sf[facei]/V[n];
+            isWallCell[F] = true;
+            wallCells.append(F);
         }
-        for (const label facei : boundaryFaces_)
+    };
+    for (const label facei : internalFaces_)
+    {
+        const label o = own[facei];
+        const label n = nei[facei];
+        const bool oc = covered(o);
+        if (oc != covered(n))
         {
-            const label o = mesh_.faceOwner()[facei];
-            if (covered(o))
+            // S_f points out of the owner
+            if (oc)
             {
-                continue;
+                addFace(n, -Sf[facei], Cf[facei]);
             }
+            else
+            {
+                addFace(o, Sf[facei], Cf[facei]);
+            }
+        }
+    }
+    for (const label facei : boundaryFaces_)
+    {
+        const label o = mesh_.faceOwner()[facei];
+        if (!covered(o))
+        {
             const label patchi = pbm.whichPatch(facei);
             const label i = facei - pbm[patchi].start();
-            const scalar value =
-                p[o]
-              + ((Cf.boundaryField()[patchi][i] - C[o]) & g[o]);
-            const scalar change = value - pfB[patchi][i];
-            pfB[patchi][i] = value;
-            g[o] += change*Sf.boundaryField()[patchi][i]/V[o];
+            addFace
+            (
+                o,
+                Sf.boundaryField()[patchi][i],
+                Cf.boundaryField()[patchi][i]
+            );
+        }
+    }
+    for (const label F : wallCells)
+    {
+        const tensor A(I - M[F]);
+        if (mag(det(A)) > 0.1)
+        {
+            g[F] = inv(A) & g[F];
+        }
+    }
+
+    // The wall values with those gradients
+    for (const label facei : internalFaces_)
+    {
+        const label o = own[facei];
+        const label n = nei[facei];
+        const bool oc = covered(o);
+        if (oc != covered(n))
+        {
+            const label F = oc ? n : o;
+            pfI[facei] = p[F] + ((Cf[facei] - C[F]) & g[F]);
+        }
+    }
+    for (const label facei : boundaryFaces_)
+    {
+        const label o = mesh_.faceOwner()[facei];
+        if (!covered(o))
+        {
+            const label patchi = pbm.whichPatch(facei);
+            const label i = facei - pbm[patchi].start();
+            pfB[patchi][i] =
+                p[o] + ((Cf.boundaryField()[patchi][i] - C[o]) & g[o]);
         }
     }
 

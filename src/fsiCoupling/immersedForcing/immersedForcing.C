@@ -58,7 +58,14 @@ void Foam::fv::immersedForcing::update()
     if (ghostWall_)
     {
         const clockValue wallStart(true);
-        boundary_.locateWall(triSurface(surfaceTriangles_, solid.points()));
+        boundary_.locateWall
+        (
+            triSurface
+            (
+                surfaceTriangles_,
+                pointField(UIndirectList<point>(solid.points(), surfacePoints_))
+            )
+        );
         wallTime_ = double(wallStart.elapsed());
     }
 
@@ -264,16 +271,29 @@ Foam::fv::immersedForcing::immersedForcing
                 ++count(key, 0);
             }
         }
+        // compact numbering: the surface's own points
+        labelList local(coupling_.solid().points().size(), -1);
+        DynamicList<label> points;
         DynamicList<labelledTri> tris(count.size());
         forAllConstIters(count, iter)
         {
             if (iter.val() == 1)
             {
-                const triFace& f = iter.key();
+                triFace f(iter.key());
+                for (label& pointi : f)
+                {
+                    if (local[pointi] < 0)
+                    {
+                        local[pointi] = points.size();
+                        points.append(pointi);
+                    }
+                    pointi = local[pointi];
+                }
                 tris.append(labelledTri(f[0], f[1], f[2], 0));
             }
         }
         surfaceTriangles_.transfer(tris);
+        surfacePoints_.transfer(points);
     }
 
     // Coverage of the initial configuration
@@ -284,7 +304,17 @@ Foam::fv::immersedForcing::immersedForcing
     {
         boundary_.locateWall
         (
-            triSurface(surfaceTriangles_, coupling_.solid().points())
+            triSurface
+            (
+                surfaceTriangles_,
+                pointField
+                (
+                    UIndirectList<point>
+                    (
+                        coupling_.solid().points(), surfacePoints_
+                    )
+                )
+            )
         );
     }
     UIndirectList<scalar>
