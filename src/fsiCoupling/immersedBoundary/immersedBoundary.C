@@ -42,6 +42,10 @@ Foam::immersedBoundary::immersedBoundary
     coveredCells_(),
     coveredVelocity_(),
     coveredIndex_(mesh.nCells(), -1),
+    nSolidCovered_(0),
+    nPockets_(0),
+    refCells_(),
+    pName_("p"),
     nbrCovered_(mesh.nBoundaryFaces(), false),
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
     internalFaces_(),
@@ -60,12 +64,15 @@ void Foam::immersedBoundary::update
 {
     coveredCells_ = coveredCells;
     coveredVelocity_ = coveredVelocity;
+    nSolidCovered_ = coveredCells_.size();
 
     coveredIndex_ = -1;
     forAll(coveredCells_, i)
     {
         coveredIndex_[coveredCells_[i]] = i;
     }
+
+    findEnclosedFluid();
 
     // Covered flag and solid velocity of the cells across processor faces
     {
@@ -330,6 +337,128 @@ void Foam::immersedBoundary::slip
 }
 
 
+void Foam::immersedBoundary::findEnclosedFluid()
+{
+    // Fluid cells connected (through faces between fluid cells) to a cell
+    // where the pressure is fixed: a boundary face whose p condition
+    // fixes the value, or, with none in the domain, the reference cell
+    // (CBS pRefCell, on the master). Flood fill, repeated across processor
+    // faces until no rank changes.
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const cellList& cells = mesh_.cells();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const label nInternal = mesh_.nInternalFaces();
+
+    boolList reached(mesh_.nCells(), false);
+    DynamicList<label> front;
+    auto seed = [&](const label celli)
+    {
+        if (coveredIndex_[celli] < 0 && !reached[celli])
+        {
+            reached[celli] = true;
+            front.append(celli);
+        }
+    };
+
+    const volScalarField* pPtr = mesh_.findObject<volScalarField>(pName_);
+    bool anyFixed = false;
+    if (pPtr)
+    {
+        forAll(pbm, patchi)
+        {
+            if (!pbm[patchi].coupled() && pPtr->boundaryField()[patchi].fixesValue())
+            {
+                anyFixed = anyFixed || pbm[patchi].size();
+                for (const label celli : pbm[patchi].faceCells())
+                {
+                    seed(celli);
+                }
+            }
+        }
+    }
+    reduce(anyFixed, orOp<bool>());
+    if (!anyFixed && Pstream::master() && mesh_.nCells())
+    {
+        const label refCell =
+            mesh_.solutionDict().subOrEmptyDict("CBS")
+           .getOrDefault<label>("pRefCell", 0);
+        seed(min(max(refCell, 0), mesh_.nCells() - 1));
+    }
+
+    while (true)
+    {
+        while (front.size())
+        {
+            const label celli = front.remove();
+            for (const label facei : cells[celli])
+            {
+                if (facei < nInternal)
+                {
+                    seed(own[facei] == celli ? nei[facei] : own[facei]);
+                }
+            }
+        }
+        if (!Pstream::parRun())
+        {
+            break;
+        }
+        // across processor faces (fluid on both sides)
+        boolList nbrReached(mesh_.nBoundaryFaces(), false);
+        syncTools::swapBoundaryCellList(mesh_, reached, nbrReached);
+        label added = 0;
+        forAll(pbm, patchi)
+        {
+            if (!pbm[patchi].coupled())
+            {
+                continue;
+            }
+            const labelUList& faceCells = pbm[patchi].faceCells();
+            forAll(faceCells, i)
+            {
+                if (nbrReached[pbm[patchi].start() + i - nInternal])
+                {
+                    const label before = front.size();
+                    seed(faceCells[i]);
+                    added += front.size() - before;
+                }
+            }
+        }
+        if (!returnReduce(added, sumOp<label>()))
+        {
+            break;
+        }
+    }
+
+    // The fluid cells not reached form regions enclosed by the solid (and
+    // walls) where the pressure is only known up to a constant: one cell
+    // of each (this rank's part) gets a reference in constrainPressure
+    refCells_.clear();
+    nPockets_ = 0;
+    forAll(reached, celli)
+    {
+        if (reached[celli] || coveredIndex_[celli] >= 0)
+        {
+            continue;
+        }
+        refCells_.append(celli);
+        seed(celli);
+        while (front.size())
+        {
+            const label cellj = front.remove();
+            ++nPockets_;
+            for (const label facei : cells[cellj])
+            {
+                if (facei < nInternal)
+                {
+                    seed(own[facei] == cellj ? nei[facei] : own[facei]);
+                }
+            }
+        }
+    }
+}
+
+
 void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
 {
     const labelUList& own = mesh_.owner();
@@ -409,11 +538,10 @@ void Foam::immersedBoundary::constrainPressure
     // by face areas) then keeps the fluid cells' coarse operator; a large D
     // there acts as a spurious fixed value on the coarse levels (GAMG
     // stalled at 1000 iterations with D = the mean diagonal).
-    // Fluid cells beside the solid get the same D added (D (p - p_old), a
-    // change of 1e-6 of a typical row): a pocket of fluid cells enclosed
-    // by covered cells (between the layers of a thin leaflet) has all its
-    // boundary faces' coefficients zero, and would otherwise be a singular
-    // block (zero rows for a single cell: GAMG divides by its diagonal).
+    // Fluid regions enclosed by the solid (findEnclosedFluid) have no
+    // fixed pressure: pure Neumann blocks, singular (a single enclosed
+    // cell is a zero row); GAMG diverged on them. One cell of each gets a
+    // reference to its current value, as fvMatrix::setReference does
     scalarField& diag = pEqn.diag();
     scalarField& source = pEqn.source();
     const scalar D = 1e-6*gAverage(diag);
@@ -422,26 +550,15 @@ void Foam::immersedBoundary::constrainPressure
         diag[celli] = D;
         source[celli] = D*p[celli];
     }
-    const labelUList& own = mesh_.owner();
-    const labelUList& nei = mesh_.neighbour();
-    boolList done(mesh_.nCells(), false);
-    auto regularise = [&](const label celli)
+    for (const label celli : refCells_)
     {
-        if (!covered(celli) && !done[celli])
+        source[celli] += diag[celli]*p[celli];
+        diag[celli] += diag[celli];
+        if (diag[celli] == 0)
         {
-            done[celli] = true;
-            diag[celli] += D;
-            source[celli] += D*p[celli];
+            diag[celli] = D;
+            source[celli] = D*p[celli];
         }
-    };
-    for (const label facei : internalFaces_)
-    {
-        regularise(own[facei]);
-        regularise(nei[facei]);
-    }
-    for (const label facei : boundaryFaces_)
-    {
-        regularise(mesh_.faceOwner()[facei]);
     }
 }
 

@@ -54,10 +54,17 @@ void Foam::fv::immersedForcing::update()
     const immersedPairs& pairs = coupling_.pairs();
     coveredVelocity_ = coupling_.solidToFluid(solid.velocities());
 
+    // the immersed faces and the wall location count as search time
+    const clockValue wallStart(true);
     boundary_.update(pairs.coveredCells(), coveredVelocity_);
+    if (debug)
+    {
+        Info<< "immersedForcing: immersed faces " << wallStart.elapsed()
+            << " s, pairs " << coupling_.searchTime() - searchTime0_ << " s"
+            << endl;
+    }
     if (ghostWall_)
     {
-        const clockValue wallStart(true);
         boundary_.locateWall
         (
             triSurface
@@ -66,17 +73,21 @@ void Foam::fv::immersedForcing::update()
                 pointField(UIndirectList<point>(solid.points(), surfacePoints_))
             )
         );
-        wallTime_ = double(wallStart.elapsed());
     }
+    wallTime_ = double(wallStart.elapsed());
 
     scalarField& chi = coverage_.primitiveFieldRef();
     chi = 0;
-    UIndirectList<scalar>(chi, pairs.coveredCells()) = 1.0;
+    UIndirectList<scalar>(chi, boundary_.coveredCells()) = 1.0;
     coverage_.correctBoundaryConditions();
 
     Info<< type() << ' ' << name_ << ": solid at t = " << solid.time()
         << ", covered cells " << returnReduce(pairs.coveredCells().size(),
                sumOp<label>())
+        << ", fluid cells enclosed by the solid " << returnReduce
+           (boundary_.nPockets(), sumOp<label>())
+        << " in " << returnReduce(boundary_.nEnclosedRegions(), sumOp<label>())
+        << " regions (pressure level fixed there)"
         << endl;
 }
 
@@ -106,7 +117,7 @@ void Foam::fv::immersedForcing::fluidForce
     f = Zero;
     const labelUList& element = pairs.coveringElement();
     const UList<immersedPairs::tetWeights>& w = pairs.weights();
-    forAll(t, i)
+    for (label i = 0; i < boundary_.nSolidCovered(); ++i)
     {
         const solidTet& e = elements[element[i]];
         for (label k = 0; k < 4; ++k)
@@ -128,7 +139,7 @@ void Foam::fv::immersedForcing::writeDiagnostics()
     const immersedPairs& pairs = coupling_.pairs();
 
     const label nCovered =
-        returnReduce(pairs.coveredCells().size(), sumOp<label>());
+        returnReduce(boundary_.coveredCells().size(), sumOp<label>());
     const label nFaces = returnReduce(boundary_.nFaces(), sumOp<label>());
     const label nSteps = returnReduce(pairs.nSteps(), sumOp<label>());
     const label nWalks = returnReduce(pairs.nWalks(), sumOp<label>());
@@ -319,7 +330,7 @@ Foam::fv::immersedForcing::immersedForcing
     }
     UIndirectList<scalar>
     (
-        coverage_.primitiveFieldRef(), coupling_.pairs().coveredCells()
+        coverage_.primitiveFieldRef(), boundary_.coveredCells()
     ) = 1.0;
     coverage_.correctBoundaryConditions();
     updateIndex_ = mesh.time().timeIndex();
@@ -347,7 +358,7 @@ void Foam::fv::immersedForcing::constrain
 
     // u_s in the covered cells, the ghost cells' value extrapolated through
     // the wall (immersedBoundary::ghostVelocity)
-    const labelUList& cells = coupling_.pairs().coveredCells();
+    const labelUList& cells = boundary_.coveredCells();
     if (ghostWall_)
     {
         eqn.setValues(cells, boundary_.ghostVelocity(eqn.psi())());
@@ -384,7 +395,7 @@ Foam::vector Foam::fv::immersedForcing::fluidSource
         const volVectorField residual(unconstrained_() & U);
         const volVectorField gradp(boundary_.grad(p));
         const scalarField& V = mesh_.V();
-        for (const label celli : coupling_.pairs().coveredCells())
+        for (const label celli : boundary_.coveredCells())
         {
             total += rhoFluid_*V[celli]*(residual[celli] + gradp[celli]);
         }
@@ -453,6 +464,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         fieldNames_.first() = coeffs_.getOrDefault<word>("U", "U");
         applied_.setSize(fieldNames_.size(), false);
         coeffs_.readEntry("rhoFluid", rhoFluid_);
+        boundary_.setPressureName(coeffs_.getOrDefault<word>("p", "p"));
         const word wall(coeffs_.getOrDefault<word>("wall", "ghost"));
         if (wall != "ghost" && wall != "staircase")
         {

@@ -377,9 +377,32 @@ void Foam::immersedPairs::findCoveredCells
             }
             // The cell's tets (as polyMeshTetDecomposition::cellTetIndices,
             // without its allocations); a bounding-box check before the
-            // separating axes
+            // separating axes. A tetrahedral cell is its own decomposition:
+            // one test with its four points
             bool hit = false;
-            for (const label facei : cells[celli])
+            const cell& cFaces = cells[celli];
+            if (cFaces.size() == 4 && faces[cFaces[0]].size() == 3)
+            {
+                const face& f0 = faces[cFaces[0]];
+                label apex = -1;
+                for (const label pointi : faces[cFaces[1]])
+                {
+                    if (!f0.found(pointi))
+                    {
+                        apex = pointi;
+                        break;
+                    }
+                }
+                const pointField& P = mesh_.points();
+                const FixedList<point, 4> B
+                    ({P[f0[0]], P[f0[1]], P[f0[2]], P[apex]});
+                hit = tetsIntersect(A, B);
+                if (!hit)
+                {
+                    continue;
+                }
+            }
+            for (const label facei : cFaces)
             {
                 const label nTri = faces[facei].size() - 2;
                 for (label tetPti = 1; tetPti <= nTri && !hit; ++tetPti)
