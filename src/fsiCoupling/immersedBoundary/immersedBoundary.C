@@ -612,17 +612,26 @@ Foam::tmp<Foam::surfaceScalarField> Foam::immersedBoundary::wallFaceValues
     // a leaflet) the zero-gradient values are kept (g = g0).
     vectorField g(fvc::surfaceIntegrate(Sf*pf)().primitiveField());
 
-    tensorField M(mesh_.nCells(), Zero);
+    // M per fluid cell beside the wall (a map: no field over all cells)
+    Map<label> wallCell(2*internalFaces_.size());
     DynamicList<label> wallCells(internalFaces_.size());
-    boolList isWallCell(mesh_.nCells(), false);
+    DynamicList<tensor> M(internalFaces_.size());
     auto addFace = [&](const label F, const vector& S, const point& xf)
     {
-        M[F] += (S*(xf - C[F]))/V[F];
-        if (!isWallCell[F])
+        auto iter = wallCell.cfind(F);
+        label k;
+        if (iter.found())
         {
-            isWallCell[F] = true;
-            wallCells.append(F);
+            k = iter.val();
         }
+        else
+        {
+            k = wallCells.size();
+            wallCell.insert(F, k);
+            wallCells.append(F);
+            M.append(Zero);
+        }
+        M[k] += (S*(xf - C[F]))/V[F];
     };
     for (const label facei : internalFaces_)
     {
@@ -657,9 +666,10 @@ Foam::tmp<Foam::surfaceScalarField> Foam::immersedBoundary::wallFaceValues
             );
         }
     }
-    for (const label F : wallCells)
+    forAll(wallCells, k)
     {
-        const tensor A(I - M[F]);
+        const label F = wallCells[k];
+        const tensor A(I - M[k]);
         if (mag(det(A)) > 0.1)
         {
             g[F] = inv(A) & g[F];

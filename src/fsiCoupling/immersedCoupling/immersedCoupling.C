@@ -53,8 +53,14 @@ void Foam::immersedCoupling::updatePairs()
 {
     const clockValue start(true);
     pairs_.findNodeCells(solid_->points());
+    const scalar tNodes = double(start.elapsed());
     pairs_.findCoveredCells(solid_->points(), solid_->elements());
     searchTime_ += double(start.elapsed());
+    if (debug)
+    {
+        Info<< "immersedCoupling: F-S pairs " << tNodes << " s, S-F pairs "
+            << double(start.elapsed()) - tNodes << " s" << endl;
+    }
 }
 
 

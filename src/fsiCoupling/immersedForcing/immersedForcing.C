@@ -33,7 +33,9 @@ void Foam::fv::immersedForcing::update()
     {
         return;
     }
+    endOfStep();
     writeDiagnostics();
+    passes_ = 0;
     updateIndex_ = runTime.timeIndex();
     stepIndex_ = runTime.timeIndex();
     searchTime0_ = coupling_.searchTime();
@@ -237,6 +239,8 @@ Foam::fv::immersedForcing::immersedForcing
     searchTime0_(0),
     transferTime0_(0),
     stepIndex_(-1),
+    stepSolved_(false),
+    passes_(0),
     diagnostics_(),
     rowScale_
     (
@@ -341,6 +345,16 @@ Foam::fv::immersedForcing::immersedForcing
 
 Foam::fv::immersedForcing::~immersedForcing()
 {
+    // (the fields may be gone: fv::options are destroyed with the mesh)
+    const word pName(coeffs_.getOrDefault<word>("p", "p"));
+    if
+    (
+        mesh_.foundObject<volScalarField>(pName)
+     && mesh_.foundObject<volVectorField>(fieldNames_.first())
+    )
+    {
+        endOfStep();
+    }
     writeDiagnostics();
 }
 
@@ -427,10 +441,36 @@ Foam::vector Foam::fv::immersedForcing::fluidSource
 }
 
 
-void Foam::fv::immersedForcing::correct(volVectorField& U)
+void Foam::fv::immersedForcing::correct(volVectorField&)
 {
+    // The force, source and slip are evaluated once per time step, from
+    // the step's final U and p: after the last projection pass of the CBS
+    // controls (momentum predictor + nCorrectors passes call correct()),
+    // else when the next step starts
+    stepSolved_ = true;
+    ++passes_;
+    const dictionary& cbs = mesh_.solutionDict().subOrEmptyDict("CBS");
+    const label expected =
+        cbs.getOrDefault<label>("nCorrectors", 1)
+      + (cbs.getOrDefault<bool>("momentumPredictor", true) ? 1 : 0);
+    if (passes_ == expected)
+    {
+        endOfStep();
+    }
+}
+
+
+void Foam::fv::immersedForcing::endOfStep()
+{
+    if (!stepSolved_)
+    {
+        return;
+    }
+    stepSolved_ = false;
     const word pName(coeffs_.getOrDefault<word>("p", "p"));
     const volScalarField& p = mesh_.lookupObject<volScalarField>(pName);
+    const volVectorField& U =
+        mesh_.lookupObject<volVectorField>(fieldNames_.first());
     const clockValue start(true);
     fluidForce(p, U);
     source_ = fluidSource(U, p);
