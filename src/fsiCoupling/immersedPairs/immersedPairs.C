@@ -48,8 +48,17 @@ Foam::immersedPairs::immersedPairs
     nSteps_(0),
     nWalks_(0),
     nFallback_(0),
-    nLeft_(0)
+    nLeft_(0),
+    candidates_(),
+    candidateX_(),
+    margin_(0),
+    nCandidateUpdates_(0)
 {
+    // a quarter of the smallest cell's size
+    if (mesh_.nCells())
+    {
+        margin_ = 0.25*Foam::cbrt(min(mesh_.cellVolumes()));
+    }
     // The cell bounding-box octree of the touching coverage (cached
     // boxes), built once
     if (coverage_ == coverageType::touching)
@@ -288,6 +297,49 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
 }
 
 
+void Foam::immersedPairs::updateCandidates
+(
+    const pointField& x,
+    const List<tetLabels>& elements
+)
+{
+    bool rebuild =
+        candidateX_.size() != x.size()
+     || candidates_.size() != elements.size();
+    if (!rebuild)
+    {
+        scalar d2 = 0;
+        forAll(x, i)
+        {
+            d2 = max(d2, magSqr(x[i] - candidateX_[i]));
+        }
+        rebuild = d2 > sqr(margin_);
+    }
+    if (!rebuild)
+    {
+        return;
+    }
+
+    const indexedOctree<treeDataCell>& cellTree = *cellBoxTree_;
+    candidates_.setSize(elements.size());
+    forAll(elements, e)
+    {
+        const tetLabels& t = elements[e];
+        treeBoundBox bb(x[t[0]], x[t[0]]);
+        for (label k = 1; k < 4; ++k)
+        {
+            bb.add(x[t[k]]);
+        }
+        const scalar grow = margin_ + 1e-9*mag(bb.span()) + ROOTVSMALL;
+        bb.min() -= point::uniform(grow);
+        bb.max() += point::uniform(grow);
+        candidates_[e] = cellTree.findBox(bb);
+    }
+    candidateX_ = x;
+    ++nCandidateUpdates_;
+}
+
+
 void Foam::immersedPairs::findCoveredCells
 (
     const pointField& x,
@@ -304,8 +356,15 @@ void Foam::immersedPairs::findCoveredCells
     // Index into the lists of each covered cell
     labelList slot(mesh_.nCells(), -1);
 
+    const bool touching = (coverage_ == coverageType::touching);
+    if (touching)
+    {
+        updateCandidates(x, elements);
+    }
+
     // Cell centres inside the elements (paper Eq. 50 with the solid's
-    // shape functions), the lowest element first
+    // shape functions), the lowest element first; candidates: the cached
+    // lists (touching) or the centre octree
     forAll(elements, e)
     {
         const tetLabels& t = elements[e];
@@ -314,15 +373,19 @@ void Foam::immersedPairs::findCoveredCells
         const point& c = x[t[2]];
         const point& d = x[t[3]];
 
-        treeBoundBox bb(a, a);
-        bb.add(b);
-        bb.add(c);
-        bb.add(d);
-        const scalar tol = 1e-9*mag(bb.span()) + ROOTVSMALL;
-        bb.min() -= point::uniform(tol);
-        bb.max() += point::uniform(tol);
-
-        const labelList cand(centreTree_->findBox(bb));
+        labelList found;
+        if (!touching)
+        {
+            treeBoundBox bb(a, a);
+            bb.add(b);
+            bb.add(c);
+            bb.add(d);
+            const scalar tol = 1e-9*mag(bb.span()) + ROOTVSMALL;
+            bb.min() -= point::uniform(tol);
+            bb.max() += point::uniform(tol);
+            found = centreTree_->findBox(bb);
+        }
+        const labelUList& cand = touching ? candidates_[e] : found;
         for (const label celli : cand)
         {
             if (slot[celli] >= 0)
@@ -351,7 +414,6 @@ void Foam::immersedPairs::findCoveredCells
     // (closed sets: touching counts), by separating axes. Candidates: the
     // cells whose bounding box overlaps the element's. Weights: the
     // barycentric coordinates of the cell centre clamped to the element.
-    const indexedOctree<treeDataCell>& cellTree = *cellBoxTree_;
     const cellList& cells = mesh_.cells();
     const faceList& faces = mesh_.faces();
     forAll(elements, e)
@@ -368,8 +430,7 @@ void Foam::immersedPairs::findCoveredCells
         bb.min() -= point::uniform(tol);
         bb.max() += point::uniform(tol);
 
-        const labelList cand(cellTree.findBox(bb));
-        for (const label celli : cand)
+        for (const label celli : candidates_[e])
         {
             if (slot[celli] >= 0)
             {

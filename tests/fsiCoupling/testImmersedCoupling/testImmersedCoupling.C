@@ -572,44 +572,57 @@ int main(int argc, char *argv[])
                         boundBox(mesh.points(), mesh.cellPoints()[c], false)
                     );
                 }
-                labelHashSet brute;
-                forAll(solid.elements(), e)
+                auto bruteTouching = [&](const pointField& xx)
                 {
-                    const solidTet& t = solid.elements()[e];
-                    const FixedList<point, 4> A
-                        ({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
-                    treeBoundBox eb(A[0], A[0]);
-                    for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
-                    forAll(cellBb, c)
+                    labelHashSet brute;
+                    forAll(solid.elements(), e)
                     {
-                        if (brute.found(c) || !cellBb[c].overlaps(eb))
+                        const solidTet& t = solid.elements()[e];
+                        const FixedList<point, 4> A
+                            ({xx[t[0]], xx[t[1]], xx[t[2]], xx[t[3]]});
+                        treeBoundBox eb(A[0], A[0]);
+                        for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
+                        forAll(cellBb, c)
                         {
-                            continue;
-                        }
-                        const immersedPairs::tetWeights w
-                        (
-                            immersedPairs::barycentric(C[c], A[0], A[1], A[2], A[3])
-                        );
-                        bool hit = immersedPairs::insideTet(w);
-                        for
-                        (
-                            const tetIndices& ti
-                          : polyMeshTetDecomposition::cellTetIndices(mesh, c)
-                        )
-                        {
-                            if (hit) break;
-                            const tetPointRef tp(ti.tet(mesh));
-                            hit = immersedPairs::tetsIntersect
+                            if (brute.found(c) || !cellBb[c].overlaps(eb))
+                            {
+                                continue;
+                            }
+                            const immersedPairs::tetWeights w
                             (
-                                A, FixedList<point, 4>({tp.a(), tp.b(), tp.c(), tp.d()})
+                                immersedPairs::barycentric
+                                (
+                                    C[c], A[0], A[1], A[2], A[3]
+                                )
                             );
-                        }
-                        if (hit)
-                        {
-                            brute.insert(c);
+                            bool hit = immersedPairs::insideTet(w);
+                            for
+                            (
+                                const tetIndices& ti
+                              : polyMeshTetDecomposition::cellTetIndices
+                                (
+                                    mesh, c
+                                )
+                            )
+                            {
+                                if (hit) break;
+                                const tetPointRef tp(ti.tet(mesh));
+                                hit = immersedPairs::tetsIntersect
+                                (
+                                    A,
+                                    FixedList<point, 4>
+                                        ({tp.a(), tp.b(), tp.c(), tp.d()})
+                                );
+                            }
+                            if (hit)
+                            {
+                                brute.insert(c);
+                            }
                         }
                     }
-                }
+                    return brute;
+                };
+                const labelHashSet brute(bruteTouching(x));
                 label nSame = 0;
                 for (const label c : brute)
                 {
@@ -625,6 +638,47 @@ int main(int argc, char *argv[])
                     100.0*nSame/max(max(nBrute, nOct), 1), 100, 0, same);
                 check("touching: crossed cells covered [%]", pct, 100, 0,
                     nHit == nCrossed && nCrossed > 0);
+
+                // Small motions (below the candidate lists' margin of a
+                // quarter of the smallest cell: the lists are reused) and
+                // one large one (rebuilt): still equal to brute force
+                const scalar h = Foam::cbrt(gMin(mesh.V().field()));
+                const vector small(0.02*h, 0.015*h, 0.01*h);
+                const vector large(0.6*h, -0.4*h, 0.3*h);
+                pointField xk(x);
+                for (label k = 1; k <= 4; ++k)
+                {
+                    xk += (k < 4 ? small : large);
+                    pairs.findNodeCells(xk);
+                    pairs.findCoveredCells(xk, solid.elements());
+                    const labelHashSet bk(bruteTouching(xk));
+                    label nSameK = 0;
+                    for (const label c : bk)
+                    {
+                        if (pairs.coveredCells().found(c)) ++nSameK;
+                    }
+                    const bool sameK =
+                        returnReduce
+                        (
+                            nSameK == bk.size()
+                         && bk.size() == pairs.coveredCells().size(),
+                            andOp<bool>()
+                        );
+                    Info<< "    moved " << (k < 4 ? "by a small step" : "far")
+                        << ": candidate lists built "
+                        << pairs.nCandidateUpdates() << " times" << endl;
+                    check
+                    (
+                        "touching after the motion: equal to brute force",
+                        sameK ? 1 : 0, 1, 0, sameK
+                    );
+                    check
+                    (
+                        "candidate lists built (reused for small motion)",
+                        pairs.nCandidateUpdates(), (k < 4 ? 1 : 2), 0,
+                        pairs.nCandidateUpdates() == (k < 4 ? 1 : 2)
+                    );
+                }
             }
             else
             {
