@@ -112,7 +112,7 @@ def main():
         ax.set_zlabel("z (mm)")
         ax.set_title("oblique view (z: flow direction)", fontsize=9)
     fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    fig.savefig(out, dpi=72)
     print("pictures.py: wrote %s (%s)" % (out, ", ".join(p for p, _ in states)))
 
 
