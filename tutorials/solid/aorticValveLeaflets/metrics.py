@@ -132,7 +132,7 @@ def signed_gap(points, x, tris, k=12):
     return best, gap, which
 
 
-def inside_tets(points, x, tets, k=16):
+def inside_tets(points, x, tets, k=40):
     """True where a point lies inside one of the tets (x, tets)."""
     cen = x[tets].mean(axis=1)
     tree = cKDTree(cen)

@@ -82,7 +82,7 @@ def main():
         faces = orient_out(X, faces, opp)
         leaf = leaflet_of_face(X, tets, faces)
         colours = shade(faces, x, COLOURS[leaf])
-        label = "%s\nt = %.0f ms" % (TITLES.get(phase, phase), t * 1e3)
+        label = "%s\nt = %.1f ms" % (TITLES.get(phase, phase), t * 1e3)
         if os.path.exists("results.%s/stopped" % phase):
             label += " (last state before it stopped)"
         # top view (from the aorta, along -z): draw lower faces first
