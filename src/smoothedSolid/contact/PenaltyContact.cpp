@@ -205,6 +205,16 @@ void PenaltyContact::addRigidSurface(RigidSurface surface)
     built_ = false;
 }
 
+void PenaltyContact::setStillNodes(std::vector<char> still)
+{
+    if (!still.empty() && still.size() != nodePart_.size()) {
+        throw Error("PenaltyContact::setStillNodes: " + std::to_string(still.size()) +
+                    " entries for " + std::to_string(nodePart_.size()) + " nodes");
+    }
+    still_ = std::move(still);
+    built_ = false;
+}
+
 void PenaltyContact::triangle(const TetMesh& mesh, const std::vector<Vec3>& x, int id, Vec3& a,
                               Vec3& b, Vec3& c) const
 {
@@ -268,7 +278,9 @@ void PenaltyContact::buildCandidates(const TetMesh& mesh, const std::vector<Vec3
     for (int s = 0; s < ns; ++s) {
         const int p = slaveNodes_[s];
         if (const std::vector<int>* cands = hash.query(x[p])) {
+            const bool still = !still_.empty() && still_[p];
             for (int id : *cands) {
+                if (id < 0 && still) continue;  // neither side can move
                 if (id >= 0) {
                     const Tri& t = mesh.faces()[bfaces[id]].nodes;
                     if (t[0] == p || t[1] == p || t[2] == p) continue;

@@ -88,6 +88,15 @@ public:
     void addRigidSurface(RigidSurface surface);
     const std::vector<RigidSurface>& rigidSurfaces() const { return rigid_; }
 
+    // Nodes held still (all three components fixed at zero displacement):
+    // they get no pairs with rigid surfaces, whose force would be discarded
+    // and which would keep the step at stepFraction for good (e.g. a
+    // leaflet's attachment, fixed on the wall it is attached to: its face
+    // nodes lie on or behind the wall by construction). Pairs with the
+    // solid's own triangles stay (their reactions move the other body).
+    // One entry per mesh node; the candidate lists are built again.
+    void setStillNodes(std::vector<char> still);
+
     // Add contact forces for current coordinates x (velocities v) to f for
     // a step dt; omega2: the elements' Gershgorin bound per node (the
     // springs' budget); pressure per node (|force|/tributary area) into
@@ -128,6 +137,7 @@ private:
     std::vector<double> mass_;
     std::vector<int> triPart_;            // part of each boundary triangle
     std::vector<int> nodePart_;
+    std::vector<char> still_;            // per node: held still (no rigid pairs)
     std::vector<std::vector<int>> neighbours_;  // nodes sharing an element
     std::vector<int> nodeFaceStart_, nodeFaces_;  // boundary faces (CSR, into boundaryFaces())
     std::vector<RigidSurface> rigid_;

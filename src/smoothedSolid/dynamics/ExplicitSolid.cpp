@@ -74,6 +74,23 @@ void ExplicitSolid::fix(const std::string& nodeSet, std::array<bool, 3> componen
 {
     prescribeDisplacement(
         nodeSet, [](double, const Vec3&) { return Vec3::Zero(); }, components);
+    constraints_.back().still = true;
+    passStillNodesToContact();
+}
+
+void ExplicitSolid::passStillNodesToContact()
+{
+    if (!contact_) return;
+    std::vector<unsigned char> held(mesh_->nNodes(), 0);  // bit k: component k fixed
+    for (const Constraint& c : constraints_) {
+        if (!c.still) continue;
+        const unsigned char bits = (c.components[0] ? 1 : 0) | (c.components[1] ? 2 : 0) |
+                                   (c.components[2] ? 4 : 0);
+        for (int i : c.nodes) held[i] |= bits;
+    }
+    std::vector<char> still(held.size());
+    for (std::size_t i = 0; i < held.size(); ++i) still[i] = held[i] == 7;
+    contact_->setStillNodes(std::move(still));
 }
 
 void ExplicitSolid::prescribeDisplacement(const std::string& nodeSet, VectorFunction u,
@@ -147,6 +164,7 @@ void ExplicitSolid::enableContact(ContactOptions options)
     contact_ = std::make_unique<PenaltyContact>(*mesh_, hMin_, material_->waveModulus(),
                                                 material_->density(), mass_, options);
     for (auto& s : keep) contact_->addRigidSurface(std::move(s));
+    passStillNodesToContact();
     contactPressure_.assign(mesh_->nNodes(), 0.0);
 }
 

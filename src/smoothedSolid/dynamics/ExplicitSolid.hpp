@@ -152,7 +152,11 @@ private:
         std::array<bool, 3> components;
         VectorFunction value;
         bool isVelocity;
+        bool still = false;  // fix(): held at zero displacement
     };
+    // Nodes held still in all three components by fix() go to the contact
+    // (no rigid-surface pairs for them: neither side can move)
+    void passStillNodesToContact();
     struct Pressure {
         std::vector<Tri> faces;
         ScalarFunction p;

@@ -227,6 +227,53 @@ CubeDrop dropCube(const ContactOptions& options, double tEnd, bool gravity = tru
 
 }  // namespace
 
+// A body fixed where it touches a rigid surface (a leaflet's attachment on
+// the root wall): nodes held still in all three components get no pairs
+// with the rigid surface, so they neither keep the step at stepFraction nor
+// report contact; held in x and z only (free in y), the same nodes are
+// pushed out of the surface and the step is halved.
+TEST(Contact, NodesHeldStillHaveNoRigidPairs)
+{
+    struct Result {
+        double dt, dtFree, pressure, uy;
+    };
+    auto run = [](std::array<bool, 3> components) {
+        // a 0.1 m cube whose bottom face (ymin) lies 0.5 mm below a rigid
+        // floor y = 0 with its normal +y, i.e. its bottom nodes start behind it
+        TetMesh mesh = TetMesh::box(3, 3, 3, [](const Vec3& s) {
+            return Vec3(0.1 * s.x(), -0.0005 + 0.1 * s.y(), 0.1 * s.z());
+        });
+        ExplicitSolid solid(std::move(mesh), std::make_shared<NeoHookean>(1e5, 5e5, 1000.0),
+                            {Formulation::Selective, 0.8, 0.0});
+        Result r{};
+        r.dtFree = solid.stableTimeStep();
+        solid.fix("ymin", components);
+        solid.addRigidSurface({{Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(1, 0, 1), Vec3(-1, 0, 1)},
+                               {{0, 2, 1}, {0, 3, 2}}});
+        r.dt = solid.stableTimeStep();
+        for (int k = 0; k < 20; ++k) {
+            solid.step(r.dt);
+            for (int v : solid.mesh().nodeSet("ymin")) {
+                r.pressure = std::max(r.pressure, solid.contactPressure()[v]);
+                r.uy = std::max(r.uy, solid.displacement()[v].y());
+            }
+        }
+        return r;
+    };
+    const Result still = run({true, true, true});
+    const Result slides = run({true, false, true});
+    std::printf("held still: dt/dt_free %.3f (expected 1), largest contact pressure %.3g Pa (0), "
+                "u_y %.3g m (0)\n", still.dt / still.dtFree, still.pressure, still.uy);
+    std::printf("held in x, z only: dt/dt_free %.3f (expected 0.5), largest contact pressure %.3g Pa (> 0), "
+                "u_y %.3g m (> 0: pushed out)\n", slides.dt / slides.dtFree, slides.pressure, slides.uy);
+    EXPECT_NEAR(still.dt / still.dtFree, 1.0, 1e-12);
+    EXPECT_EQ(still.pressure, 0.0);
+    EXPECT_EQ(still.uy, 0.0);
+    EXPECT_NEAR(slides.dt / slides.dtFree, ContactOptions{}.stepFraction, 1e-12);
+    EXPECT_GT(slides.pressure, 0.0);
+    EXPECT_GT(slides.uy, 0.0);
+}
+
 TEST(Contact, CubeDroppedOnRigidPlane)
 {
     const ContactOptions options;  // production settings
