@@ -184,13 +184,10 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
 
     continuityErrors();
 
-    if (ib)
-    {
-        ib->correctPressure(p_);
-    }
-
-    // Step III (paper Eq. 39): velocity correction
-    U_ = HbyA - rAU*pressureGradient();
+    // Step III (paper Eq. 39): velocity correction. With an immersed solid
+    // the covered cells' pressure is set for output and grad p taken with
+    // the wall pressure, from one evaluation of the wall values
+    U_ = HbyA - rAU*(ib ? ib->correctPressure(p_) : fvc::grad(p_));
     U_.correctBoundaryConditions();
     fvOptions_.correct(U_);
 }

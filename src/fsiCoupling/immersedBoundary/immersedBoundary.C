@@ -42,8 +42,7 @@ Foam::immersedBoundary::immersedBoundary
     coveredCells_(),
     coveredVelocity_(),
     coveredIndex_(mesh.nCells(), -1),
-    nSolidCovered_(0),
-    nPockets_(0),
+    nEnclosed_(0),
     refCells_(),
     pName_("p"),
     nbrCovered_(mesh.nBoundaryFaces(), false),
@@ -64,7 +63,6 @@ void Foam::immersedBoundary::update
 {
     coveredCells_ = coveredCells;
     coveredVelocity_ = coveredVelocity;
-    nSolidCovered_ = coveredCells_.size();
 
     coveredIndex_ = -1;
     forAll(coveredCells_, i)
@@ -434,7 +432,7 @@ void Foam::immersedBoundary::findEnclosedFluid()
     // walls) where the pressure is only known up to a constant: one cell
     // of each (this rank's part) gets a reference in constrainPressure
     refCells_.clear();
-    nPockets_ = 0;
+    nEnclosed_ = 0;
     forAll(reached, celli)
     {
         if (reached[celli] || coveredIndex_[celli] >= 0)
@@ -446,7 +444,7 @@ void Foam::immersedBoundary::findEnclosedFluid()
         while (front.size())
         {
             const label cellj = front.remove();
-            ++nPockets_;
+            ++nEnclosed_;
             for (const label facei : cells[cellj])
             {
                 if (facei < nInternal)
@@ -732,26 +730,26 @@ Foam::tmp<Foam::surfaceScalarField> Foam::immersedBoundary::wallFaceValues
 }
 
 
-Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::grad
+Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::gaussGrad
 (
-    const volScalarField& p
+    const surfaceScalarField& pf,
+    const word& name
 ) const
 {
-    const tmp<surfaceScalarField> tpf(wallFaceValues(p));
     tmp<volVectorField> tg
     (
         new volVectorField
         (
             IOobject
             (
-                "immersedGrad(" + p.name() + ')',
-                p.instance(),
+                "immersedGrad(" + name + ')',
+                pf.instance(),
                 mesh_,
                 IOobject::NO_READ,
                 IOobject::NO_WRITE,
                 false
             ),
-            fvc::surfaceIntegrate(mesh_.Sf()*tpf()),
+            fvc::surfaceIntegrate(mesh_.Sf()*pf),
             "zeroGradient"
         )
     );
@@ -760,14 +758,25 @@ Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::grad
 }
 
 
-void Foam::immersedBoundary::correctPressure(volScalarField& p) const
+Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::grad
+(
+    const volScalarField& p
+) const
 {
-    if (coveredCells_.empty() && !Pstream::parRun())
-    {
-        return;
-    }
+    return gaussGrad(wallFaceValues(p)(), p.name());
+}
+
+
+Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::correctPressure
+(
+    volScalarField& p
+) const
+{
+    // the gradient first: the covered cells' values set below do not
+    // enter the fluid cells' wall values
     const tmp<surfaceScalarField> tpf(wallFaceValues(p));
     const surfaceScalarField& pf = tpf();
+    tmp<volVectorField> tgrad(gaussGrad(pf, p.name()));
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
@@ -804,6 +813,7 @@ void Foam::immersedBoundary::correctPressure(volScalarField& p) const
         }
     }
     p.correctBoundaryConditions();
+    return tgrad;
 }
 
 

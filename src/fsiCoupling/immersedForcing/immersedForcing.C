@@ -87,7 +87,7 @@ void Foam::fv::immersedForcing::update()
         << ", covered cells " << returnReduce(pairs.coveredCells().size(),
                sumOp<label>())
         << ", fluid cells enclosed by the solid " << returnReduce
-           (boundary_.nPockets(), sumOp<label>())
+           (boundary_.nEnclosed(), sumOp<label>())
         << " in " << returnReduce(boundary_.nEnclosedRegions(), sumOp<label>())
         << " regions (pressure level fixed there)"
         << endl;
@@ -119,7 +119,7 @@ void Foam::fv::immersedForcing::fluidForce
     f = Zero;
     const labelUList& element = pairs.coveringElement();
     const UList<immersedPairs::tetWeights>& w = pairs.weights();
-    for (label i = 0; i < boundary_.nSolidCovered(); ++i)
+    forAll(t, i)
     {
         const solidTet& e = elements[element[i]];
         for (label k = 0; k < 4; ++k)
@@ -448,6 +448,7 @@ void Foam::fv::immersedForcing::correct(volVectorField&)
     // controls (momentum predictor + nCorrectors passes call correct()),
     // else when the next step starts
     stepSolved_ = true;
+    solidTime_ = mesh_.time().value();   // the step's time, for its line
     ++passes_;
     const dictionary& cbs = mesh_.solutionDict().subOrEmptyDict("CBS");
     const label expected =
@@ -475,7 +476,6 @@ void Foam::fv::immersedForcing::endOfStep()
     fluidForce(p, U);
     source_ = fluidSource(U, p);
     forceTime_ += double(start.elapsed());
-    solidTime_ = mesh_.time().value();
 
     // Slip: covered cells and wall points (immersedBoundary::slip)
     scalar sum2 = 0;
