@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "immersedBoundary.H"
+#include "emptyPolyPatch.H"
 #include "fvMatrices.H"
 #include "fvcSurfaceIntegrate.H"
 #include "surfaceInterpolate.H"
@@ -44,6 +45,9 @@ Foam::immersedBoundary::immersedBoundary
     coveredIndex_(mesh.nCells(), -1),
     nEnclosed_(0),
     refCells_(),
+    enclosedFound_(false),
+    cellCellStart_(),
+    cellCells_(),
     pName_("p"),
     nbrCovered_(mesh.nBoundaryFaces(), false),
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
@@ -61,35 +65,71 @@ void Foam::immersedBoundary::update
     const vectorField& coveredVelocity
 )
 {
+    // The same covered cells as the last update (then the enclosed fluid
+    // regions are those found then)
+    bool sameCells = coveredCells.size() == coveredCells_.size();
+    if (sameCells)
+    {
+        for (const label celli : coveredCells)
+        {
+            if (coveredIndex_[celli] < 0)
+            {
+                sameCells = false;
+                break;
+            }
+        }
+    }
+    reduce(sameCells, andOp<bool>());
+
+    // (reset at the last update's cells only: no pass over all cells)
+    for (const label celli : coveredCells_)
+    {
+        coveredIndex_[celli] = -1;
+    }
     coveredCells_ = coveredCells;
     coveredVelocity_ = coveredVelocity;
-
-    coveredIndex_ = -1;
     forAll(coveredCells_, i)
     {
         coveredIndex_[coveredCells_[i]] = i;
     }
 
-    findEnclosedFluid();
-
-    // Covered flag and solid velocity of the cells across processor faces
+    if (!sameCells || !enclosedFound_)
     {
-        boolList cellCovered(mesh_.nCells(), false);
-        vectorField cellVelocity(mesh_.nCells(), Zero);
-        forAll(coveredCells_, i)
+        findEnclosedFluid();
+    }
+
+    // Covered flag and solid velocity of the cells across coupled faces
+    {
+        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+        const label nInternal = mesh_.nInternalFaces();
+        nbrCovered_ = false;
+        nbrVelocity_ = Zero;
+        forAll(pbm, patchi)
         {
-            cellCovered[coveredCells_[i]] = true;
-            cellVelocity[coveredCells_[i]] = coveredVelocity_[i];
+            if (!pbm[patchi].coupled())
+            {
+                continue;
+            }
+            const labelUList& faceCells = pbm[patchi].faceCells();
+            const label start = pbm[patchi].start() - nInternal;
+            forAll(faceCells, i)
+            {
+                const label ic = coveredIndex_[faceCells[i]];
+                if (ic >= 0)
+                {
+                    nbrCovered_[start + i] = true;
+                    nbrVelocity_[start + i] = coveredVelocity_[ic];
+                }
+            }
         }
-        syncTools::swapBoundaryCellList(mesh_, cellCovered, nbrCovered_);
-        syncTools::swapBoundaryCellList(mesh_, cellVelocity, nbrVelocity_);
+        syncTools::swapBoundaryFaceList(mesh_, nbrCovered_);
+        syncTools::swapBoundaryFaceList(mesh_, nbrVelocity_);
     }
 
     // Immersed faces: every face of a covered cell (internal, or coupled
     // boundary), and the coupled faces whose other side is covered
     const cellList& cells = mesh_.cells();
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-    boolList isImmersed(mesh_.nFaces(), false);
     DynamicList<label> internal(6*coveredCells_.size());
     DynamicList<label> boundary;
 
@@ -97,18 +137,18 @@ void Foam::immersedBoundary::update
     {
         for (const label facei : cells[celli])
         {
-            if (isImmersed[facei])
-            {
-                continue;
-            }
             if (mesh_.isInternalFace(facei))
             {
-                isImmersed[facei] = true;
-                internal.append(facei);
+                // once: from the owner, or the neighbour if the owner is
+                // not covered
+                const label o = mesh_.faceOwner()[facei];
+                if (o == celli || !covered(o))
+                {
+                    internal.append(facei);
+                }
             }
             else if (pbm[pbm.whichPatch(facei)].coupled())
             {
-                isImmersed[facei] = true;
                 boundary.append(facei);
             }
         }
@@ -118,13 +158,12 @@ void Foam::immersedBoundary::update
         if (pbm[patchi].coupled())
         {
             const label start = pbm[patchi].start();
-            forAll(pbm[patchi], i)
+            const labelUList& faceCells = pbm[patchi].faceCells();
+            forAll(faceCells, i)
             {
-                const label facei = start + i;
-                if (!isImmersed[facei] && nbrCovered(facei))
+                if (!covered(faceCells[i]) && nbrCovered(start + i))
                 {
-                    isImmersed[facei] = true;
-                    boundary.append(facei);
+                    boundary.append(start + i);
                 }
             }
         }
@@ -142,63 +181,72 @@ void Foam::immersedBoundary::locateWall(const triSurface& surface)
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const volVectorField& C = mesh_.C();
-    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
 
     // Cell centres across coupled faces
-    pointField nbrC(mesh_.nBoundaryFaces());
+    pointField nbrC(mesh_.nBoundaryFaces(), Zero);
     {
-        pointField cellC(C.primitiveField());
-        syncTools::swapBoundaryCellList(mesh_, cellC, nbrC);
+        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+        forAll(pbm, patchi)
+        {
+            if (pbm[patchi].coupled())
+            {
+                const labelUList& faceCells = pbm[patchi].faceCells();
+                const label start =
+                    pbm[patchi].start() - mesh_.nInternalFaces();
+                forAll(faceCells, i)
+                {
+                    nbrC[start + i] = C[faceCells[i]];
+                }
+            }
+        }
+        syncTools::swapBoundaryFaceList(mesh_, nbrC);
     }
 
-    // Segments from the covered to the fluid cell centre
+    // Segments from the covered to the fluid cell centre (those faces
+    // only)
     const label nInt = internalFaces_.size();
-    pointField start(nFaces());
-    pointField end(nFaces());
-    boolList isCF(nFaces(), false);
+    DynamicList<label> cf(nFaces());
+    DynamicList<point> start(nFaces());
+    DynamicList<point> end(nFaces());
     forAll(internalFaces_, i)
     {
         const label facei = internalFaces_[i];
         const bool oc = covered(own[facei]);
         if (oc != covered(nei[facei]))
         {
-            isCF[i] = true;
-            start[i] = C[oc ? own[facei] : nei[facei]];
-            end[i] = C[oc ? nei[facei] : own[facei]];
-        }
-        else
-        {
-            start[i] = end[i] = C[own[facei]];
+            cf.append(i);
+            start.append(C[oc ? own[facei] : nei[facei]]);
+            end.append(C[oc ? nei[facei] : own[facei]]);
         }
     }
     forAll(boundaryFaces_, j)
     {
         const label facei = boundaryFaces_[j];
-        const label i = nInt + j;
         const label o = mesh_.faceOwner()[facei];
-        start[i] = end[i] = C[o];
         if (covered(o) && !nbrCovered(facei))
         {
-            isCF[i] = true;
-            end[i] = nbrC[facei - mesh_.nInternalFaces()];
+            cf.append(nInt + j);
+            start.append(C[o]);
+            end.append(nbrC[facei - mesh_.nInternalFaces()]);
         }
     }
 
+    const pointField segStart(std::move(start));
+    const pointField segEnd(std::move(end));
     const triSurfaceSearch search(surface);
     List<pointIndexHit> hits;
-    search.findLine(start, end, hits);
+    search.findLine(segStart, segEnd, hits);
 
     wallFraction_ = -1;
-    forAll(hits, i)
+    forAll(hits, k)
     {
-        if (isCF[i] && hits[i].hit())
+        if (hits[k].hit())
         {
-            const scalar d = mag(end[i] - start[i]);
-            wallFraction_[i] =
-                min(max(mag(hits[i].hitPoint() - start[i])/d, 0.0), 1.0);
+            const scalar d = mag(segEnd[k] - segStart[k]);
+            wallFraction_[cf[k]] =
+                min(max(mag(hits[k].hitPoint() - segStart[k])/d, 0.0), 1.0);
         }
     }
-    (void)pbm;
 }
 
 
@@ -340,22 +388,67 @@ void Foam::immersedBoundary::findEnclosedFluid()
     // Fluid cells connected (through faces between fluid cells) to a cell
     // where the pressure is fixed: a boundary face whose p condition
     // fixes the value, or, with none in the domain, the reference cell
-    // (CBS pRefCell, on the master). Flood fill, repeated across processor
-    // faces until no rank changes.
-    const labelUList& own = mesh_.owner();
-    const labelUList& nei = mesh_.neighbour();
-    const cellList& cells = mesh_.cells();
+    // (CBS pRefCell, on the master). Breadth-first fill over the cell-cell
+    // addressing of the internal faces (compact, built once), repeated
+    // across processor faces until no rank changes.
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     const label nInternal = mesh_.nInternalFaces();
+    const label nCells = mesh_.nCells();
 
-    boolList reached(mesh_.nCells(), false);
-    DynamicList<label> front;
+    if (cellCellStart_.size() != nCells + 1)
+    {
+        const labelUList& own = mesh_.owner();
+        const labelUList& nei = mesh_.neighbour();
+        cellCellStart_.setSize(nCells + 1);
+        cellCellStart_ = 0;
+        for (label facei = 0; facei < nInternal; ++facei)
+        {
+            ++cellCellStart_[own[facei] + 1];
+            ++cellCellStart_[nei[facei] + 1];
+        }
+        for (label celli = 0; celli < nCells; ++celli)
+        {
+            cellCellStart_[celli + 1] += cellCellStart_[celli];
+        }
+        cellCells_.setSize(cellCellStart_[nCells]);
+        labelList next(nCells);
+        for (label celli = 0; celli < nCells; ++celli)
+        {
+            next[celli] = cellCellStart_[celli];
+        }
+        for (label facei = 0; facei < nInternal; ++facei)
+        {
+            cellCells_[next[own[facei]]++] = nei[facei];
+            cellCells_[next[nei[facei]]++] = own[facei];
+        }
+    }
+
+    List<char> reached(nCells, char(0));
+    labelList queue(nCells);
+    label head = 0;
+    label tail = 0;
     auto seed = [&](const label celli)
     {
-        if (coveredIndex_[celli] < 0 && !reached[celli])
+        if (!reached[celli] && coveredIndex_[celli] < 0)
         {
-            reached[celli] = true;
-            front.append(celli);
+            reached[celli] = 1;
+            queue[tail++] = celli;
+        }
+    };
+    auto fill = [&]()
+    {
+        while (head < tail)
+        {
+            const label celli = queue[head++];
+            for
+            (
+                label k = cellCellStart_[celli];
+                k < cellCellStart_[celli + 1];
+                ++k
+            )
+            {
+                seed(cellCells_[k]);
+            }
         }
     };
 
@@ -365,7 +458,11 @@ void Foam::immersedBoundary::findEnclosedFluid()
     {
         forAll(pbm, patchi)
         {
-            if (!pbm[patchi].coupled() && pPtr->boundaryField()[patchi].fixesValue())
+            if
+            (
+                !pbm[patchi].coupled()
+             && pPtr->boundaryField()[patchi].fixesValue()
+            )
             {
                 anyFixed = anyFixed || pbm[patchi].size();
                 for (const label celli : pbm[patchi].faceCells())
@@ -376,35 +473,38 @@ void Foam::immersedBoundary::findEnclosedFluid()
         }
     }
     reduce(anyFixed, orOp<bool>());
-    if (!anyFixed && Pstream::master() && mesh_.nCells())
+    enclosedFound_ = returnReduce(pPtr != nullptr, andOp<bool>());
+    if (!anyFixed && Pstream::master() && nCells)
     {
         const label refCell =
             mesh_.solutionDict().subOrEmptyDict("CBS")
            .getOrDefault<label>("pRefCell", 0);
-        seed(min(max(refCell, 0), mesh_.nCells() - 1));
+        seed(min(max(refCell, 0), nCells - 1));
     }
 
     while (true)
     {
-        while (front.size())
-        {
-            const label celli = front.remove();
-            for (const label facei : cells[celli])
-            {
-                if (facei < nInternal)
-                {
-                    seed(own[facei] == celli ? nei[facei] : own[facei]);
-                }
-            }
-        }
+        fill();
         if (!Pstream::parRun())
         {
             break;
         }
         // across processor faces (fluid on both sides)
         boolList nbrReached(mesh_.nBoundaryFaces(), false);
-        syncTools::swapBoundaryCellList(mesh_, reached, nbrReached);
-        label added = 0;
+        forAll(pbm, patchi)
+        {
+            if (pbm[patchi].coupled())
+            {
+                const labelUList& faceCells = pbm[patchi].faceCells();
+                const label start = pbm[patchi].start() - nInternal;
+                forAll(faceCells, i)
+                {
+                    nbrReached[start + i] = reached[faceCells[i]];
+                }
+            }
+        }
+        syncTools::swapBoundaryFaceList(mesh_, nbrReached);
+        const label before = tail;
         forAll(pbm, patchi)
         {
             if (!pbm[patchi].coupled())
@@ -416,13 +516,11 @@ void Foam::immersedBoundary::findEnclosedFluid()
             {
                 if (nbrReached[pbm[patchi].start() + i - nInternal])
                 {
-                    const label before = front.size();
                     seed(faceCells[i]);
-                    added += front.size() - before;
                 }
             }
         }
-        if (!returnReduce(added, sumOp<label>()))
+        if (!returnReduce(tail - before, sumOp<label>()))
         {
             break;
         }
@@ -432,28 +530,17 @@ void Foam::immersedBoundary::findEnclosedFluid()
     // walls) where the pressure is only known up to a constant: one cell
     // of each (this rank's part) gets a reference in constrainPressure
     refCells_.clear();
-    nEnclosed_ = 0;
+    const label nReached = tail;
     forAll(reached, celli)
     {
-        if (reached[celli] || coveredIndex_[celli] >= 0)
+        if (!reached[celli] && coveredIndex_[celli] < 0)
         {
-            continue;
-        }
-        refCells_.append(celli);
-        seed(celli);
-        while (front.size())
-        {
-            const label cellj = front.remove();
-            ++nEnclosed_;
-            for (const label facei : cells[cellj])
-            {
-                if (facei < nInternal)
-                {
-                    seed(own[facei] == cellj ? nei[facei] : own[facei]);
-                }
-            }
+            refCells_.append(celli);
+            seed(celli);
+            fill();
         }
     }
+    nEnclosed_ = tail - nReached;
 }
 
 
@@ -561,57 +648,34 @@ void Foam::immersedBoundary::constrainPressure
 }
 
 
-Foam::tmp<Foam::surfaceScalarField> Foam::immersedBoundary::wallFaceValues
+void Foam::immersedBoundary::wallValues
 (
     const volScalarField& p,
-    vectorField* gradient
+    scalarField& internalWall,
+    scalarField& boundaryWall,
+    Map<label>& wallCell,
+    vectorField& gradient
 ) const
 {
+    // Only the fluid cells beside the wall and their faces are visited (no
+    // field over all cells or faces)
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
-    const surfaceVectorField& Sf = mesh_.Sf();
-    const surfaceVectorField& Cf = mesh_.Cf();
-    const volVectorField& C = mesh_.C();
-    const scalarField& V = mesh_.V();
+    const vectorField& Sf = mesh_.faceAreas();
+    const vectorField& Cf = mesh_.faceCentres();
+    const vectorField& C = mesh_.cellCentres();
+    const scalarField& V = mesh_.cellVolumes();
+    const surfaceScalarField& weights = mesh_.weights();
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const cellList& cells = mesh_.cells();
     const label nInternal = mesh_.nInternalFaces();
 
-    tmp<surfaceScalarField> tpf(linearInterpolate(p));
-    surfaceScalarField& pf = tpf.ref();
-    scalarField& pfI = pf.primitiveFieldRef();
-    auto& pfB = pf.boundaryFieldRef();
-
-    // Start from the fluid cell's value (zero gradient at the wall)
-    for (const label facei : internalFaces_)
-    {
-        const bool oc = covered(own[facei]);
-        const bool nc = covered(nei[facei]);
-        if (oc != nc)
-        {
-            pfI[facei] = p[oc ? nei[facei] : own[facei]];
-        }
-    }
-    for (const label facei : boundaryFaces_)
-    {
-        const label patchi = pbm.whichPatch(facei);
-        const label i = facei - pbm[patchi].start();
-        if (!covered(mesh_.faceOwner()[facei]))
-        {
-            pfB[patchi][i] = p[mesh_.faceOwner()[facei]];
-        }
-    }
-
-    // Gauss gradient g0 with those values. With the wall values
-    // p_F + (x_f - x_F).g on the immersed faces of a fluid cell F, its Gauss
-    // gradient satisfies g = g0 + M g, M = (1/V) sum_imm S_f (x_f - x_F)^T:
-    // solved cell by cell, g = (I - M)^-1 g0. Where I - M is near singular
-    // (the immersed faces surround the cell on opposite sides: no
-    // information across; det < 0.1, e.g. a cell between the two layers of
-    // a leaflet) the zero-gradient values are kept (g = g0).
-    vectorField g(fvc::surfaceIntegrate(Sf*pf)().primitiveField());
-
-    // M per fluid cell beside the wall (a map: no field over all cells)
-    Map<label> wallCell(2*internalFaces_.size());
+    // M per fluid cell beside the wall: with the wall values
+    // p_F + (x_f - x_F).g on its immersed faces, its Gauss gradient
+    // satisfies g = g0 + M g, M = (1/V) sum_imm S_f (x_f - x_F)^T, g0 the
+    // Gauss gradient with p_F there (zero gradient at the wall)
+    wallCell.clear();
+    wallCell.resize(2*internalFaces_.size());
     DynamicList<label> wallCells(internalFaces_.size());
     DynamicList<tensor> M(internalFaces_.size());
     auto addFace = [&](const label F, const vector& S, const point& xf)
@@ -654,78 +718,161 @@ Foam::tmp<Foam::surfaceScalarField> Foam::immersedBoundary::wallFaceValues
         const label o = mesh_.faceOwner()[facei];
         if (!covered(o))
         {
-            const label patchi = pbm.whichPatch(facei);
-            const label i = facei - pbm[patchi].start();
-            addFace
-            (
-                o,
-                Sf.boundaryField()[patchi][i],
-                Cf.boundaryField()[patchi][i]
-            );
-        }
-    }
-    forAll(wallCells, k)
-    {
-        const label F = wallCells[k];
-        const tensor A(I - M[k]);
-        if (mag(det(A)) > 0.1)
-        {
-            g[F] = inv(A) & g[F];
+            addFace(o, Sf[facei], Cf[facei]);
         }
     }
 
-    // The wall values with those gradients
-    for (const label facei : internalFaces_)
+    // p across the coupled faces (all ranks take part)
+    scalarField pNbr(mesh_.nBoundaryFaces(), Zero);
+    forAll(pbm, patchi)
     {
+        if (pbm[patchi].coupled())
+        {
+            SubList<scalar>
+            (
+                pNbr, pbm[patchi].size(), pbm[patchi].start() - nInternal
+            ) = p.boundaryField()[patchi].patchNeighbourField();
+        }
+    }
+
+    // g0 of each wall cell: face values as linearInterpolate's, p_F on its
+    // immersed faces; then g = (I - M)^-1 g0. Where I - M is near singular
+    // (the immersed faces surround the cell on opposite sides: no
+    // information across; det < 0.1, e.g. a cell between the two layers
+    // of a leaflet) the zero-gradient values are kept (g = g0).
+    gradient.setSize(wallCells.size());
+    forAll(wallCells, k)
+    {
+        const label F = wallCells[k];
+        vector g0(Zero);
+        for (const label facei : cells[F])
+        {
+            if (facei < nInternal)
+            {
+                const label o = own[facei];
+                const label n = nei[facei];
+                const scalar pf =
+                    covered(o == F ? n : o)
+                  ? p[F]
+                  : weights[facei]*p[o] + (1 - weights[facei])*p[n];
+                g0 += (o == F ? Sf[facei] : -Sf[facei])*pf;
+                continue;
+            }
+            const label patchi = pbm.whichPatch(facei);
+            if (isA<emptyPolyPatch>(pbm[patchi]))
+            {
+                continue;
+            }
+            const label i = facei - pbm[patchi].start();
+            scalar pf;
+            if (!pbm[patchi].coupled())
+            {
+                pf = p.boundaryField()[patchi][i];
+            }
+            else if (nbrCovered(facei))
+            {
+                pf = p[F];
+            }
+            else
+            {
+                const scalar w = weights.boundaryField()[patchi][i];
+                pf = w*p[F] + (1 - w)*pNbr[facei - nInternal];
+            }
+            g0 += Sf[facei]*pf;
+        }
+        g0 /= V[F];
+        const tensor A(I - M[k]);
+        gradient[k] = mag(det(A)) > 0.1 ? (inv(A) & g0) : g0;
+    }
+
+    // The wall values with those gradients
+    internalWall.setSize(internalFaces_.size());
+    internalWall = 0;
+    forAll(internalFaces_, j)
+    {
+        const label facei = internalFaces_[j];
         const label o = own[facei];
         const label n = nei[facei];
         const bool oc = covered(o);
         if (oc != covered(n))
         {
             const label F = oc ? n : o;
-            pfI[facei] = p[F] + ((Cf[facei] - C[F]) & g[F]);
+            internalWall[j] =
+                p[F] + ((Cf[facei] - C[F]) & gradient[wallCell[F]]);
         }
     }
-    for (const label facei : boundaryFaces_)
+    boundaryWall.setSize(boundaryFaces_.size());
+    boundaryWall = 0;
+    scalarField nbrWall;
+    if (boundaryFaces_.size() || Pstream::parRun())
     {
+        nbrWall.setSize(mesh_.nBoundaryFaces(), Zero);
+    }
+    forAll(boundaryFaces_, j)
+    {
+        const label facei = boundaryFaces_[j];
         const label o = mesh_.faceOwner()[facei];
         if (!covered(o))
         {
-            const label patchi = pbm.whichPatch(facei);
-            const label i = facei - pbm[patchi].start();
-            pfB[patchi][i] =
-                p[o] + ((Cf.boundaryField()[patchi][i] - C[o]) & g[o]);
+            boundaryWall[j] =
+                p[o] + ((Cf[facei] - C[o]) & gradient[wallCell[o]]);
+            nbrWall[facei - nInternal] = boundaryWall[j];
         }
-    }
-
-    if (gradient)
-    {
-        *gradient = g;
     }
 
     // Coupled faces with the covered cell on this side: the wall value of
     // the fluid side, from the other rank
     if (boundaryFaces_.size() || Pstream::parRun())
     {
-        scalarField wallValue(mesh_.nBoundaryFaces(), Zero);
-        for (const label facei : boundaryFaces_)
+        syncTools::swapBoundaryFaceList(mesh_, nbrWall);
+        forAll(boundaryFaces_, j)
         {
-            const label patchi = pbm.whichPatch(facei);
-            wallValue[facei - nInternal] =
-                pfB[patchi][facei - pbm[patchi].start()];
-        }
-        syncTools::swapBoundaryFaceList(mesh_, wallValue);
-        for (const label facei : boundaryFaces_)
-        {
+            const label facei = boundaryFaces_[j];
             if (covered(mesh_.faceOwner()[facei]) && !nbrCovered(facei))
             {
-                const label patchi = pbm.whichPatch(facei);
-                pfB[patchi][facei - pbm[patchi].start()] =
-                    wallValue[facei - nInternal];
+                boundaryWall[j] = nbrWall[facei - nInternal];
             }
         }
     }
+}
 
+
+Foam::tmp<Foam::surfaceScalarField> Foam::immersedBoundary::wallFaceValues
+(
+    const volScalarField& p
+) const
+{
+    scalarField internalWall;
+    scalarField boundaryWall;
+    Map<label> wallCell;
+    vectorField gradient;
+    wallValues(p, internalWall, boundaryWall, wallCell, gradient);
+
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+
+    tmp<surfaceScalarField> tpf(linearInterpolate(p));
+    surfaceScalarField& pf = tpf.ref();
+    scalarField& pfI = pf.primitiveFieldRef();
+    auto& pfB = pf.boundaryFieldRef();
+    forAll(internalFaces_, j)
+    {
+        const label facei = internalFaces_[j];
+        if (covered(own[facei]) != covered(nei[facei]))
+        {
+            pfI[facei] = internalWall[j];
+        }
+    }
+    forAll(boundaryFaces_, j)
+    {
+        const label facei = boundaryFaces_[j];
+        if (covered(mesh_.faceOwner()[facei]) != nbrCovered(facei))
+        {
+            const label patchi = pbm.whichPatch(facei);
+            pfB[patchi][facei - pbm[patchi].start()] = boundaryWall[j];
+        }
+    }
     return tpf;
 }
 
@@ -822,21 +969,27 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
     const volScalarField& p,
     const volVectorField& U,
     const volScalarField& nu,
-    const scalar rhoFluid
+    const scalar rhoFluid,
+    vector& coveredGradP
 ) const
 {
     tmp<vectorField> tt(new vectorField(coveredCells_.size(), Zero));
     vectorField& t = tt.ref();
+    coveredGradP = Zero;
 
+    scalarField internalWall;
+    scalarField boundaryWall;
+    Map<label> wallCell;
     vectorField gradp;
-    const tmp<surfaceScalarField> tpf(wallFaceValues(p, &gradp));
-    const surfaceScalarField& pf = tpf();
+    wallValues(p, internalWall, boundaryWall, wallCell, gradp);
+
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
-    const surfaceVectorField& Sf = mesh_.Sf();
+    const vectorField& Sf = mesh_.faceAreas();
     const surfaceScalarField& delta = mesh_.nonOrthDeltaCoeffs();
-    const volVectorField& Cc = mesh_.C();
+    const vectorField& Cc = mesh_.cellCentres();
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const label nInternal = mesh_.nInternalFaces();
 
     forAll(internalFaces_, facej)
     {
@@ -857,46 +1010,53 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
         const scalar lambda = wallFraction_[facej];
         const scalar pw =
             lambda < 0
-          ? pf[facei]
-          : p[F] + ((Cc[C] + lambda*(Cc[F] - Cc[C]) - Cc[F]) & gradp[F]);
+          ? internalWall[facej]
+          : p[F]
+          + ((Cc[C] + lambda*(Cc[F] - Cc[C]) - Cc[F]) & gradp[wallCell[F]]);
         t[io >= 0 ? io : in] +=
             rhoFluid
            *(
               - pw*S
               + nu[F]*mag(S)*delta[facei]*(U[F] - U[C])
             );
+        coveredGradP += internalWall[facej]*S;
     }
 
+    // Coupled faces: U and nu across them (all ranks take part)
+    vectorField Unbr(mesh_.nBoundaryFaces(), Zero);
+    scalarField nuNbr(mesh_.nBoundaryFaces(), Zero);
     forAll(pbm, patchi)
     {
-        if (!pbm[patchi].coupled())
+        if (pbm[patchi].coupled())
+        {
+            const label start = pbm[patchi].start() - nInternal;
+            SubList<vector>(Unbr, pbm[patchi].size(), start) =
+                U.boundaryField()[patchi].patchNeighbourField();
+            SubList<scalar>(nuNbr, pbm[patchi].size(), start) =
+                nu.boundaryField()[patchi].patchNeighbourField();
+        }
+    }
+    forAll(boundaryFaces_, j)
+    {
+        const label facei = boundaryFaces_[j];
+        const label o = mesh_.faceOwner()[facei];
+        const label io = coveredIndex_[o];
+        if (io < 0 || nbrCovered(facei))
         {
             continue;
         }
-        const vectorField Unbr(U.boundaryField()[patchi].patchNeighbourField());
-        const scalarField nuNbr
-        (
-            nu.boundaryField()[patchi].patchNeighbourField()
-        );
-        const label start = pbm[patchi].start();
-        const labelUList& faceCells = pbm[patchi].faceCells();
-        forAll(pbm[patchi], i)
-        {
-            const label facei = start + i;
-            const label io = coveredIndex_[faceCells[i]];
-            if (io < 0 || nbrCovered(facei))
-            {
-                continue;
-            }
-            const vector& S = Sf.boundaryField()[patchi][i];
-            t[io] +=
-                rhoFluid
-               *(
-                  - pf.boundaryField()[patchi][i]*S
-                  + nuNbr[i]*mag(S)*delta.boundaryField()[patchi][i]
-                   *(Unbr[i] - U[faceCells[i]])
-                );
-        }
+        const label patchi = pbm.whichPatch(facei);
+        const label i = facei - pbm[patchi].start();
+        const label b = facei - nInternal;
+        const vector& S = Sf[facei];
+        t[io] +=
+            rhoFluid
+           *(
+              - boundaryWall[j]*S
+              + nuNbr[b]*mag(S)*delta.boundaryField()[patchi][i]
+               *(Unbr[b] - U[o])
+            );
+        coveredGradP += boundaryWall[j]*S;
     }
 
     return tt;

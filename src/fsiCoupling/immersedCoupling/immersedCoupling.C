@@ -59,7 +59,10 @@ void Foam::immersedCoupling::updatePairs()
     if (debug)
     {
         Info<< "immersedCoupling: F-S pairs " << tNodes << " s, S-F pairs "
-            << double(start.elapsed()) - tNodes << " s" << endl;
+            << double(start.elapsed()) - tNodes << " s (element-cell tests "
+            << pairs_.nPairTests() << ", skipped by their gap "
+            << pairs_.nPairsSkipped() << ", candidate lists built "
+            << pairs_.nCandidateUpdates() << " times)" << endl;
     }
 }
 

@@ -4,10 +4,8 @@
 
 #include "immersedForcing.H"
 #include "fvMatrices.H"
-#include "fvcGrad.H"
 #include "singlePhaseTransportModel.H"
 #include "clockValue.H"
-#include "emptyPolyPatch.H"
 #include "OSspecific.H"
 #include "addToRunTimeSelectionTable.H"
 
@@ -110,7 +108,10 @@ void Foam::fv::immersedForcing::fluidForce
 
     // Traction on the staircase surface of the covered cells (pressure
     // and viscous, Eqs. 44/48 boundary terms), per covered cell
-    const vectorField t(boundary_.traction(p, U, tnu(), rhoFluid_));
+    const vectorField t
+    (
+        boundary_.traction(p, U, tnu(), rhoFluid_, coveredGradP_)
+    );
 
     // To the solid nodes by the covered cell's shape-function weights
     // (transpose of Eq. 52: the total is kept), summed over the ranks
@@ -242,6 +243,8 @@ Foam::fv::immersedForcing::immersedForcing
     stepSolved_(false),
     passes_(0),
     diagnostics_(),
+    unconstrained_(),
+    coveredGradP_(Zero),
     rowScale_
     (
         // OptimisationSwitches of the case's controlDict, then etc/
@@ -368,7 +371,7 @@ void Foam::fv::immersedForcing::constrain
 )
 {
     update();
-    unconstrained_.reset(new fvMatrix<vector>(eqn));
+    unconstrained_.keep(eqn, boundary_.coveredCells());
 
     // u_s in the covered cells, the ghost cells' value extrapolated through
     // the wall (immersedBoundary::ghostVelocity)
@@ -399,42 +402,13 @@ void Foam::fv::immersedForcing::constrain
 
 Foam::vector Foam::fv::immersedForcing::fluidSource
 (
-    const volVectorField& U,
-    const volScalarField& p
+    const volVectorField& U
 ) const
 {
     vector total(Zero);
-    if (unconstrained_.valid())
+    if (!unconstrained_.empty())
     {
-        const volVectorField residual(unconstrained_() & U);
-        const volVectorField gradp(boundary_.grad(p));
-        const scalarField& V = mesh_.V();
-        for (const label celli : boundary_.coveredCells())
-        {
-            total += rhoFluid_*V[celli]*(residual[celli] + gradp[celli]);
-        }
-
-        // Less the pressure of the domain's own boundary (walls, inlets)
-        // on covered cells that touch it: that force is between the solid
-        // and the boundary holding it, not between solid and fluid
-        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-        forAll(pbm, patchi)
-        {
-            if (pbm[patchi].coupled() || isA<emptyPolyPatch>(pbm[patchi]))
-            {
-                continue;
-            }
-            const labelUList& faceCells = pbm[patchi].faceCells();
-            const vectorField& Sf = mesh_.Sf().boundaryField()[patchi];
-            const scalarField& pb = p.boundaryField()[patchi];
-            forAll(faceCells, i)
-            {
-                if (boundary_.covered(faceCells[i]))
-                {
-                    total -= rhoFluid_*pb[i]*Sf[i];
-                }
-            }
-        }
+        total = rhoFluid_*(unconstrained_.residualSum(U) + coveredGradP_);
     }
     reduce(total, sumOp<vector>());
     return total;
@@ -474,7 +448,7 @@ void Foam::fv::immersedForcing::endOfStep()
         mesh_.lookupObject<volVectorField>(fieldNames_.first());
     const clockValue start(true);
     fluidForce(p, U);
-    source_ = fluidSource(U, p);
+    source_ = fluidSource(U);
     forceTime_ += double(start.elapsed());
 
     // Slip: covered cells and wall points (immersedBoundary::slip)

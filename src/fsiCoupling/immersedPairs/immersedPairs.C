@@ -9,6 +9,7 @@
 #include "processorPolyPatch.H"
 #include "treeDataCell.H"
 #include "polyMeshTetDecomposition.H"
+#include "clockValue.H"
 
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
@@ -50,9 +51,19 @@ Foam::immersedPairs::immersedPairs
     nFallback_(0),
     nLeft_(0),
     candidates_(),
+    candidateGap_(),
+    candidateCentreGap_(),
     candidateX_(),
     margin_(0),
-    nCandidateUpdates_(0)
+    nCandidateUpdates_(0),
+    nPairTests_(0),
+    nPairsSkipped_(0),
+    cellBb_(),
+    nearCoupled_(),
+    visitedBy_(),
+    fillCells_(),
+    stamp_(0),
+    slot_()
 {
     // a quarter of the smallest cell's size
     if (mesh_.nCells())
@@ -321,7 +332,44 @@ void Foam::immersedPairs::updateCandidates
     }
 
     const indexedOctree<treeDataCell>& cellTree = *cellBoxTree_;
+
+    // Cell boxes and the cells with a coupled face, once
+    if (cellBb_.size() != mesh_.nCells())
+    {
+        const cellList& cells = mesh_.cells();
+        const faceList& faces = mesh_.faces();
+        const pointField& P = mesh_.points();
+        cellBb_.setSize(mesh_.nCells());
+        nearCoupled_.setSize(mesh_.nCells());
+        nearCoupled_ = false;
+        forAll(cells, celli)
+        {
+            treeBoundBox bb(P[faces[cells[celli][0]][0]], P[faces[cells[celli][0]][0]]);
+            for (const label facei : cells[celli])
+            {
+                for (const label pointi : faces[facei])
+                {
+                    bb.add(P[pointi]);
+                }
+                if (!mesh_.isInternalFace(facei))
+                {
+                    const label patchi =
+                        mesh_.boundaryMesh().whichPatch(facei);
+                    if (mesh_.boundaryMesh()[patchi].coupled())
+                    {
+                        nearCoupled_[celli] = true;
+                    }
+                }
+            }
+            cellBb_[celli] = bb;
+        }
+        visitedBy_ = labelList(mesh_.nCells(), -1);
+    }
+    const labelListList& cellCells = mesh_.cellCells();
+
     candidates_.setSize(elements.size());
+    candidateGap_.setSize(elements.size());
+    candidateCentreGap_.setSize(elements.size());
     forAll(elements, e)
     {
         const tetLabels& t = elements[e];
@@ -333,10 +381,150 @@ void Foam::immersedPairs::updateCandidates
         const scalar grow = margin_ + 1e-9*mag(bb.span()) + ROOTVSMALL;
         bb.min() -= point::uniform(grow);
         bb.max() += point::uniform(grow);
-        candidates_[e] = cellTree.findBox(bb);
+        // The cells whose box overlaps bb, by a fill over face neighbours
+        // from the cells of the element's nodes: the cells that meet bb
+        // (an open box) are face-connected and contain the nodes' cells,
+        // so the fill reaches every one of them. The octree where a node
+        // is not in this rank's cells or the fill meets a coupled face
+        // (the rank's part of bb may not be connected).
+        bool useTree = false;
+        DynamicList<label>& found = fillCells_;
+        found.clear();
+        if (++stamp_ == labelMax)
+        {
+            visitedBy_ = -1;
+            stamp_ = 0;
+        }
+        const label mark = stamp_;
+        for (label k = 0; k < 4 && !useTree; ++k)
+        {
+            const label c0 = nodeCell_.size() == x.size() ? nodeCell_[t[k]] : -1;
+            if (c0 < 0)
+            {
+                useTree = true;
+            }
+            else if (visitedBy_[c0] != mark)
+            {
+                visitedBy_[c0] = mark;
+                found.append(c0);
+            }
+        }
+        for (label head = 0; head < found.size() && !useTree; ++head)
+        {
+            const label celli = found[head];
+            if (nearCoupled_[celli])
+            {
+                useTree = true;
+                break;
+            }
+            for (const label nb : cellCells[celli])
+            {
+                if (visitedBy_[nb] != mark)
+                {
+                    visitedBy_[nb] = mark;
+                    if (cellBb_[nb].overlaps(bb))
+                    {
+                        found.append(nb);
+                    }
+                }
+            }
+        }
+        if (useTree)
+        {
+            candidates_[e] = cellTree.findBox(bb);
+        }
+        else
+        {
+            candidates_[e] = found;
+        }
+        candidateGap_[e].setSize(candidates_[e].size());
+        candidateGap_[e] = -1;
+        candidateCentreGap_[e].setSize(candidates_[e].size());
+        candidateCentreGap_[e] = 0;
     }
     candidateX_ = x;
     ++nCandidateUpdates_;
+}
+
+
+Foam::scalar Foam::immersedPairs::cellSeparation
+(
+    const FixedList<point, 4>& A,
+    const treeBoundBox& bb,
+    const label celli
+) const
+{
+    // Separation of two boxes: the largest gap along the coordinate axes
+    auto boxGap = [](const treeBoundBox& a, const treeBoundBox& b)
+    {
+        scalar g = -GREAT;
+        for (direction k = 0; k < 3; ++k)
+        {
+            g = max(g, max(b.min()[k] - a.max()[k], a.min()[k] - b.max()[k]));
+        }
+        return g;
+    };
+
+    const cellList& cells = mesh_.cells();
+    const faceList& faces = mesh_.faces();
+    const pointField& P = mesh_.points();
+    const cell& cFaces = cells[celli];
+
+    // A tetrahedral cell is its own decomposition: one test with its four
+    // points
+    if (cFaces.size() == 4 && faces[cFaces[0]].size() == 3)
+    {
+        const face& f0 = faces[cFaces[0]];
+        label apex = -1;
+        for (const label pointi : faces[cFaces[1]])
+        {
+            if (!f0.found(pointi))
+            {
+                apex = pointi;
+                break;
+            }
+        }
+        const FixedList<point, 4> B({P[f0[0]], P[f0[1]], P[f0[2]], P[apex]});
+        treeBoundBox tb(B[0], B[0]);
+        tb.add(B[1]);
+        tb.add(B[2]);
+        tb.add(B[3]);
+        const scalar g = boxGap(bb, tb);
+        if (g > 0)
+        {
+            return g;
+        }
+        return tetSeparation(A, B);
+    }
+
+    // The cell's tets (as polyMeshTetDecomposition::cellTetIndices, without
+    // its allocations): apart when every one of them is; the distance is
+    // at least the smallest of theirs
+    scalar gap = GREAT;
+    for (const label facei : cFaces)
+    {
+        const label nTri = faces[facei].size() - 2;
+        for (label tetPti = 1; tetPti <= nTri; ++tetPti)
+        {
+            const tetPointRef tp(tetIndices(celli, facei, tetPti).tet(mesh_));
+            const FixedList<point, 4> B({tp.a(), tp.b(), tp.c(), tp.d()});
+            treeBoundBox tb(B[0], B[0]);
+            tb.add(B[1]);
+            tb.add(B[2]);
+            tb.add(B[3]);
+            scalar g = boxGap(bb, tb);
+            if (g <= 0)
+            {
+                g = tetSeparation(A, B);
+                if (g < 0)
+                {
+                    return -1;
+                }
+            }
+            gap = min(gap, g);
+        }
+    }
+    return gap;
 }
 
 
@@ -346,25 +534,58 @@ void Foam::immersedPairs::findCoveredCells
     const List<tetLabels>& elements
 )
 {
+    // Reset the slots of the last search's cells only
+    if (slot_.size() != mesh_.nCells())
+    {
+        slot_ = labelList(mesh_.nCells(), -1);
+    }
+    for (const label celli : coveredCells_)
+    {
+        slot_[celli] = -1;
+    }
     coveredCells_.clear();
     coveringElement_.clear();
     weights_.clear();
     centreInside_.clear();
+    nPairTests_ = 0;
+    nPairsSkipped_ = 0;
 
     const pointField& C = mesh_.cellCentres();
-
-    // Index into the lists of each covered cell
-    labelList slot(mesh_.nCells(), -1);
+    labelList& slot = slot_;
 
     const bool touching = (coverage_ == coverageType::touching);
+
+    // Touching: each node's motion since the candidate lists were built;
+    // an element's is the largest of its nodes'
+    scalarField moved;
     if (touching)
     {
+        const clockValue start(true);
         updateCandidates(x, elements);
+        if (debug)
+        {
+            Info<< "immersedPairs: candidate lists " << start.elapsed()
+                << " s" << endl;
+        }
+        moved.setSize(x.size());
+        forAll(x, i)
+        {
+            moved[i] = mag(x[i] - candidateX_[i]);
+        }
     }
+    auto elementMoved = [&](const tetLabels& t)
+    {
+        return max(max(moved[t[0]], moved[t[1]]), max(moved[t[2]], moved[t[3]]));
+    };
 
     // Cell centres inside the elements (paper Eq. 50 with the solid's
     // shape functions), the lowest element first; candidates: the cached
-    // lists (touching) or the centre octree
+    // lists (touching) or the centre octree. Touching: a pair still apart
+    // by its kept gap has its centre outside (the centre is inside the
+    // cell); a pair whose centre was found at a distance d from the
+    // element's boundary (inside or outside: the largest w_i h_i < 0, or
+    // the smallest w_i h_i, h_i the height over face i) keeps that side
+    // while the element has moved less than d since
     forAll(elements, e)
     {
         const tetLabels& t = elements[e];
@@ -374,6 +595,9 @@ void Foam::immersedPairs::findCoveredCells
         const point& d = x[t[3]];
 
         labelList found;
+        const scalar* gap = nullptr;
+        scalar* centreGap = nullptr;
+        scalar me = 0;
         if (!touching)
         {
             treeBoundBox bb(a, a);
@@ -385,15 +609,55 @@ void Foam::immersedPairs::findCoveredCells
             bb.max() += point::uniform(tol);
             found = centreTree_->findBox(bb);
         }
-        const labelUList& cand = touching ? candidates_[e] : found;
-        for (const label celli : cand)
+        else
         {
+            gap = candidateGap_[e].cdata();
+            centreGap = candidateCentreGap_[e].data();
+            me = elementMoved(t);
+        }
+        // heights over the faces opposite each vertex (when needed)
+        FixedList<scalar, 4> h(-1);
+        const labelUList& cand = touching ? candidates_[e] : found;
+        forAll(cand, k)
+        {
+            // (the kept gaps first: read in order, the slots are not)
+            if (gap && (me < gap[k] || (centreGap[k] > 0 && me < centreGap[k])))
+            {
+                ++nPairsSkipped_;
+                continue;
+            }
+            const label celli = cand[k];
             if (slot[celli] >= 0)
             {
                 continue;
             }
+            ++nPairTests_;
             const tetWeights w(barycentric(C[celli], a, b, c, d));
-            if (insideTet(w))
+            const bool in = insideTet(w);
+            if (centreGap && !(in && centreGap[k] < 0 && me < -centreGap[k]))
+            {
+                if (h[0] < 0)
+                {
+                    const scalar V6 = mag(((b - a) ^ (c - a)) & (d - a));
+                    h[0] = V6/max(mag((c - b) ^ (d - b)), VSMALL);
+                    h[1] = V6/max(mag((c - a) ^ (d - a)), VSMALL);
+                    h[2] = V6/max(mag((b - a) ^ (d - a)), VSMALL);
+                    h[3] = V6/max(mag((b - a) ^ (c - a)), VSMALL);
+                }
+                scalar dist = in ? GREAT : 0;
+                for (label i = 0; i < 4; ++i)
+                {
+                    dist =
+                        in
+                      ? min(dist, w[i]*h[i])
+                      : max(dist, -w[i]*h[i]);
+                }
+                // kept relative to candidateX_, with a round-off margin;
+                // > 0 outside, < 0 inside, 0 test again
+                const scalar kept = max((1 - 1e-9)*dist - me, scalar(0));
+                centreGap[k] = in ? -kept : kept;
+            }
+            if (in)
             {
                 slot[celli] = coveredCells_.size();
                 coveredCells_.append(celli);
@@ -404,18 +668,17 @@ void Foam::immersedPairs::findCoveredCells
         }
     }
 
-    if (coverage_ != coverageType::touching)
+    if (!touching)
     {
         return;
     }
 
     // Cells touched by the elements: a tet of the cell's CELL_TETS
     // decomposition (the one of the inside test) and the element intersect
-    // (closed sets: touching counts), by separating axes. Candidates: the
-    // cells whose bounding box overlaps the element's. Weights: the
-    // barycentric coordinates of the cell centre clamped to the element.
-    const cellList& cells = mesh_.cells();
-    const faceList& faces = mesh_.faces();
+    // (closed sets: touching counts), by separating axes (cellSeparation;
+    // the gap found is kept). Candidates: the cells whose bounding box
+    // overlaps the element's. Weights: the barycentric coordinates of the
+    // cell centre clamped to the element.
     forAll(elements, e)
     {
         const tetLabels& t = elements[e];
@@ -430,65 +693,49 @@ void Foam::immersedPairs::findCoveredCells
         bb.min() -= point::uniform(tol);
         bb.max() += point::uniform(tol);
 
-        for (const label celli : candidates_[e])
+        // The pairs kept for the next searches are written back in place:
+        // a pair whose gap exceeds margin_ cannot touch before the lists
+        // are rebuilt (a node moving by more than margin_ rebuilds them)
+        // and is dropped
+        labelList& cand = candidates_[e];
+        scalarList& gap = candidateGap_[e];
+        scalarList& centreGap = candidateCentreGap_[e];
+        const scalar me = elementMoved(t);
+        label nKept = 0;
+        auto keep = [&](const label k, const scalar g)
         {
+            cand[nKept] = cand[k];
+            centreGap[nKept] = centreGap[k];
+            gap[nKept++] = g;
+        };
+        forAll(cand, k)
+        {
+            if (me < gap[k])
+            {
+                ++nPairsSkipped_;
+                keep(k, gap[k]);
+                continue;
+            }
+            const label celli = cand[k];
             if (slot[celli] >= 0)
             {
+                keep(k, gap[k]);
                 continue;
             }
-            // The cell's tets (as polyMeshTetDecomposition::cellTetIndices,
-            // without its allocations); a bounding-box check before the
-            // separating axes. A tetrahedral cell is its own decomposition:
-            // one test with its four points
-            bool hit = false;
-            const cell& cFaces = cells[celli];
-            if (cFaces.size() == 4 && faces[cFaces[0]].size() == 3)
+            ++nPairTests_;
+            const scalar g = cellSeparation(A, bb, celli);
+            if (g >= 0)
             {
-                const face& f0 = faces[cFaces[0]];
-                label apex = -1;
-                for (const label pointi : faces[cFaces[1]])
+                // apart: kept relative to candidateX_ (|x' - x| <= moved'
+                // + moved), with a relative margin for the round-off
+                const scalar kept = (1 - 1e-9)*g - me;
+                if (kept <= margin_)
                 {
-                    if (!f0.found(pointi))
-                    {
-                        apex = pointi;
-                        break;
-                    }
+                    keep(k, kept);
                 }
-                const pointField& P = mesh_.points();
-                const FixedList<point, 4> B
-                    ({P[f0[0]], P[f0[1]], P[f0[2]], P[apex]});
-                hit = tetsIntersect(A, B);
-                if (!hit)
-                {
-                    continue;
-                }
-            }
-            for (const label facei : cFaces)
-            {
-                const label nTri = faces[facei].size() - 2;
-                for (label tetPti = 1; tetPti <= nTri && !hit; ++tetPti)
-                {
-                    const tetPointRef tp
-                    (
-                        tetIndices(celli, facei, tetPti).tet(mesh_)
-                    );
-                    const FixedList<point, 4> B
-                        ({tp.a(), tp.b(), tp.c(), tp.d()});
-                    treeBoundBox tb(B[0], B[0]);
-                    tb.add(B[1]);
-                    tb.add(B[2]);
-                    tb.add(B[3]);
-                    hit = tb.overlaps(bb) && tetsIntersect(A, B);
-                }
-                if (hit)
-                {
-                    break;
-                }
-            }
-            if (!hit)
-            {
                 continue;
             }
+            keep(k, -1);
 
             tetWeights w(barycentric(C[celli], A[0], A[1], A[2], A[3]));
             scalar sum = 0;
@@ -507,11 +754,17 @@ void Foam::immersedPairs::findCoveredCells
             weights_.append(w);
             centreInside_.append(false);
         }
+        if (nKept < cand.size())
+        {
+            cand.setSize(nKept);
+            gap.setSize(nKept);
+            centreGap.setSize(nKept);
+        }
     }
 }
 
 
-bool Foam::immersedPairs::tetsIntersect
+Foam::scalar Foam::immersedPairs::tetSeparation
 (
     const FixedList<point, 4>& A,
     const FixedList<point, 4>& B
@@ -529,12 +782,14 @@ bool Foam::immersedPairs::tetsIntersect
         scale = max(scale, magSqr(B[edges[i][1]] - B[edges[i][0]]));
     }
 
-    // Separated along n: the projections do not overlap (strictly)
-    auto separated = [&](const vector& n)
+    // Gap along n (> 0: the projections do not overlap, strictly), scaled
+    // to a unit axis; 0 for no axis (parallel edges) or overlap
+    auto gapAlong = [&](const vector& n)
     {
-        if (magSqr(n) <= 1e-24*sqr(scale))
+        const scalar n2 = magSqr(n);
+        if (n2 <= 1e-24*sqr(scale))
         {
-            return false;   // parallel edges: no axis
+            return scalar(0);   // parallel edges: no axis
         }
         scalar minA = GREAT, maxA = -GREAT, minB = GREAT, maxB = -GREAT;
         for (label k = 0; k < 4; ++k)
@@ -546,19 +801,22 @@ bool Foam::immersedPairs::tetsIntersect
             minB = min(minB, b);
             maxB = max(maxB, b);
         }
-        return maxA < minB || maxB < minA;
+        const scalar g = max(minB - maxA, minA - maxB);
+        return g > 0 ? g/Foam::sqrt(n2) : scalar(0);
     };
 
     for (label f = 0; f < 4; ++f)
     {
         const label* v = faces[f];
-        if (separated((A[v[1]] - A[v[0]]) ^ (A[v[2]] - A[v[0]])))
+        scalar g = gapAlong((A[v[1]] - A[v[0]]) ^ (A[v[2]] - A[v[0]]));
+        if (g > 0)
         {
-            return false;
+            return g;
         }
-        if (separated((B[v[1]] - B[v[0]]) ^ (B[v[2]] - B[v[0]])))
+        g = gapAlong((B[v[1]] - B[v[0]]) ^ (B[v[2]] - B[v[0]]));
+        if (g > 0)
         {
-            return false;
+            return g;
         }
     }
     for (label i = 0; i < 6; ++i)
@@ -567,13 +825,14 @@ bool Foam::immersedPairs::tetsIntersect
         for (label j = 0; j < 6; ++j)
         {
             const vector eb(B[edges[j][1]] - B[edges[j][0]]);
-            if (separated(ea ^ eb))
+            const scalar g = gapAlong(ea ^ eb);
+            if (g > 0)
             {
-                return false;
+                return g;
             }
         }
     }
-    return true;
+    return -1;
 }
 
 
