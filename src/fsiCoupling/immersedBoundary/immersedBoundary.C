@@ -46,8 +46,6 @@ Foam::immersedBoundary::immersedBoundary
     nEnclosed_(0),
     refCells_(),
     enclosedFound_(false),
-    cellCellStart_(),
-    cellCells_(),
     pName_("p"),
     nbrCovered_(mesh.nBoundaryFaces(), false),
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
@@ -183,24 +181,8 @@ void Foam::immersedBoundary::locateWall(const triSurface& surface)
     const volVectorField& C = mesh_.C();
 
     // Cell centres across coupled faces
-    pointField nbrC(mesh_.nBoundaryFaces(), Zero);
-    {
-        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-        forAll(pbm, patchi)
-        {
-            if (pbm[patchi].coupled())
-            {
-                const labelUList& faceCells = pbm[patchi].faceCells();
-                const label start =
-                    pbm[patchi].start() - mesh_.nInternalFaces();
-                forAll(faceCells, i)
-                {
-                    nbrC[start + i] = C[faceCells[i]];
-                }
-            }
-        }
-        syncTools::swapBoundaryFaceList(mesh_, nbrC);
-    }
+    pointField nbrC;
+    syncTools::swapBoundaryCellList(mesh_, C.primitiveField(), nbrC);
 
     // Segments from the covered to the fluid cell centre (those faces
     // only)
@@ -287,19 +269,8 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::ghostVelocity
     }
     if (Pstream::parRun())
     {
-        vectorField nbrU(mesh_.nBoundaryFaces(), Zero);
-        forAll(pbm, patchi)
-        {
-            if (pbm[patchi].coupled())
-            {
-                SubList<vector>
-                (
-                    nbrU,
-                    pbm[patchi].size(),
-                    pbm[patchi].start() - mesh_.nInternalFaces()
-                ) = U.boundaryField()[patchi].patchNeighbourField();
-            }
-        }
+        vectorField nbrU;
+        syncTools::swapBoundaryCellList(mesh_, U.primitiveField(), nbrU);
         forAll(boundaryFaces_, j)
         {
             if (wallFraction_[nInt + j] < 0)
@@ -389,39 +360,13 @@ void Foam::immersedBoundary::findEnclosedFluid()
     // where the pressure is fixed: a boundary face whose p condition
     // fixes the value, or, with none in the domain, the reference cell
     // (CBS pRefCell, on the master). Breadth-first fill over the cell-cell
-    // addressing of the internal faces (compact, built once), repeated
+    // addressing of the internal faces (primitiveMesh::cellCells), repeated
     // across processor faces until no rank changes.
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     const label nInternal = mesh_.nInternalFaces();
     const label nCells = mesh_.nCells();
 
-    if (cellCellStart_.size() != nCells + 1)
-    {
-        const labelUList& own = mesh_.owner();
-        const labelUList& nei = mesh_.neighbour();
-        cellCellStart_.setSize(nCells + 1);
-        cellCellStart_ = 0;
-        for (label facei = 0; facei < nInternal; ++facei)
-        {
-            ++cellCellStart_[own[facei] + 1];
-            ++cellCellStart_[nei[facei] + 1];
-        }
-        for (label celli = 0; celli < nCells; ++celli)
-        {
-            cellCellStart_[celli + 1] += cellCellStart_[celli];
-        }
-        cellCells_.setSize(cellCellStart_[nCells]);
-        labelList next(nCells);
-        for (label celli = 0; celli < nCells; ++celli)
-        {
-            next[celli] = cellCellStart_[celli];
-        }
-        for (label facei = 0; facei < nInternal; ++facei)
-        {
-            cellCells_[next[own[facei]]++] = nei[facei];
-            cellCells_[next[nei[facei]]++] = own[facei];
-        }
-    }
+    const labelListList& cellCells = mesh_.cellCells();
 
     List<char> reached(nCells, char(0));
     labelList queue(nCells);
@@ -440,14 +385,9 @@ void Foam::immersedBoundary::findEnclosedFluid()
         while (head < tail)
         {
             const label celli = queue[head++];
-            for
-            (
-                label k = cellCellStart_[celli];
-                k < cellCellStart_[celli + 1];
-                ++k
-            )
+            for (const label nb : cellCells[celli])
             {
-                seed(cellCells_[k]);
+                seed(nb);
             }
         }
     };
@@ -723,17 +663,8 @@ void Foam::immersedBoundary::wallValues
     }
 
     // p across the coupled faces (all ranks take part)
-    scalarField pNbr(mesh_.nBoundaryFaces(), Zero);
-    forAll(pbm, patchi)
-    {
-        if (pbm[patchi].coupled())
-        {
-            SubList<scalar>
-            (
-                pNbr, pbm[patchi].size(), pbm[patchi].start() - nInternal
-            ) = p.boundaryField()[patchi].patchNeighbourField();
-        }
-    }
+    scalarField pNbr;
+    syncTools::swapBoundaryCellList(mesh_, p.primitiveField(), pNbr);
 
     // g0 of each wall cell: face values as linearInterpolate's, p_F on its
     // immersed faces; then g = (I - M)^-1 g0. Where I - M is near singular
@@ -1023,19 +954,10 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
     }
 
     // Coupled faces: U and nu across them (all ranks take part)
-    vectorField Unbr(mesh_.nBoundaryFaces(), Zero);
-    scalarField nuNbr(mesh_.nBoundaryFaces(), Zero);
-    forAll(pbm, patchi)
-    {
-        if (pbm[patchi].coupled())
-        {
-            const label start = pbm[patchi].start() - nInternal;
-            SubList<vector>(Unbr, pbm[patchi].size(), start) =
-                U.boundaryField()[patchi].patchNeighbourField();
-            SubList<scalar>(nuNbr, pbm[patchi].size(), start) =
-                nu.boundaryField()[patchi].patchNeighbourField();
-        }
-    }
+    vectorField Unbr;
+    scalarField nuNbr;
+    syncTools::swapBoundaryCellList(mesh_, U.primitiveField(), Unbr);
+    syncTools::swapBoundaryCellList(mesh_, nu.primitiveField(), nuNbr);
     forAll(boundaryFaces_, j)
     {
         const label facei = boundaryFaces_[j];

@@ -70,28 +70,6 @@ Foam::immersedPairs::immersedPairs
     {
         margin_ = 0.25*Foam::cbrt(min(mesh_.cellVolumes()));
     }
-    // The cell bounding-box octree of the touching coverage (cached
-    // boxes), built once
-    if (coverage_ == coverageType::touching)
-    {
-        treeBoundBox cbb(mesh_.points());
-        Random rndGenBox(5678);
-        cbb = cbb.extend(rndGenBox, 1e-4);
-        cbb.min() -= point::uniform(ROOTVSMALL);
-        cbb.max() += point::uniform(ROOTVSMALL);
-        cellBoxTree_.reset
-        (
-            new indexedOctree<treeDataCell>
-            (
-                treeDataCell(true, mesh_, polyMesh::CELL_TETS),
-                cbb,
-                8,
-                10.0,
-                6.0
-            )
-        );
-    }
-
     // Octree of the cell centres, built once (the fluid mesh never moves)
     const pointField& C = mesh_.cellCentres();
     Random rndGen(1234);
@@ -308,6 +286,32 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
 }
 
 
+const Foam::indexedOctree<Foam::treeDataCell>&
+Foam::immersedPairs::cellBoxTree()
+{
+    if (!cellBoxTree_.valid())
+    {
+        treeBoundBox cbb(mesh_.points());
+        Random rndGenBox(5678);
+        cbb = cbb.extend(rndGenBox, 1e-4);
+        cbb.min() -= point::uniform(ROOTVSMALL);
+        cbb.max() += point::uniform(ROOTVSMALL);
+        cellBoxTree_.reset
+        (
+            new indexedOctree<treeDataCell>
+            (
+                treeDataCell(true, mesh_, polyMesh::CELL_TETS),
+                cbb,
+                8,
+                10.0,
+                6.0
+            )
+        );
+    }
+    return *cellBoxTree_;
+}
+
+
 void Foam::immersedPairs::updateCandidates
 (
     const pointField& x,
@@ -330,8 +334,6 @@ void Foam::immersedPairs::updateCandidates
     {
         return;
     }
-
-    const indexedOctree<treeDataCell>& cellTree = *cellBoxTree_;
 
     // Cell boxes and the cells with a coupled face, once
     if (cellBb_.size() != mesh_.nCells())
@@ -431,7 +433,7 @@ void Foam::immersedPairs::updateCandidates
         }
         if (useTree)
         {
-            candidates_[e] = cellTree.findBox(bb);
+            candidates_[e] = cellBoxTree().findBox(bb);
         }
         else
         {
@@ -582,10 +584,9 @@ void Foam::immersedPairs::findCoveredCells
     // shape functions), the lowest element first; candidates: the cached
     // lists (touching) or the centre octree. Touching: a pair still apart
     // by its kept gap has its centre outside (the centre is inside the
-    // cell); a pair whose centre was found at a distance d from the
-    // element's boundary (inside or outside: the largest w_i h_i < 0, or
-    // the smallest w_i h_i, h_i the height over face i) keeps that side
-    // while the element has moved less than d since
+    // cell); so has a pair whose centre was found outside at a distance d
+    // (at least the largest -w_i h_i, h_i the height over face i) while
+    // the element has moved less than d since
     forAll(elements, e)
     {
         const tetLabels& t = elements[e];
@@ -621,7 +622,7 @@ void Foam::immersedPairs::findCoveredCells
         forAll(cand, k)
         {
             // (the kept gaps first: read in order, the slots are not)
-            if (gap && (me < gap[k] || (centreGap[k] > 0 && me < centreGap[k])))
+            if (gap && (me < gap[k] || me < centreGap[k]))
             {
                 ++nPairsSkipped_;
                 continue;
@@ -634,7 +635,7 @@ void Foam::immersedPairs::findCoveredCells
             ++nPairTests_;
             const tetWeights w(barycentric(C[celli], a, b, c, d));
             const bool in = insideTet(w);
-            if (centreGap && !(in && centreGap[k] < 0 && me < -centreGap[k]))
+            if (centreGap && !in)
             {
                 if (h[0] < 0)
                 {
@@ -644,18 +645,13 @@ void Foam::immersedPairs::findCoveredCells
                     h[2] = V6/max(mag((b - a) ^ (d - a)), VSMALL);
                     h[3] = V6/max(mag((b - a) ^ (c - a)), VSMALL);
                 }
-                scalar dist = in ? GREAT : 0;
+                scalar dist = 0;
                 for (label i = 0; i < 4; ++i)
                 {
-                    dist =
-                        in
-                      ? min(dist, w[i]*h[i])
-                      : max(dist, -w[i]*h[i]);
+                    dist = max(dist, -w[i]*h[i]);
                 }
-                // kept relative to candidateX_, with a round-off margin;
-                // > 0 outside, < 0 inside, 0 test again
-                const scalar kept = max((1 - 1e-9)*dist - me, scalar(0));
-                centreGap[k] = in ? -kept : kept;
+                // kept relative to candidateX_, with a round-off margin
+                centreGap[k] = (1 - 1e-9)*dist - me;
             }
             if (in)
             {

@@ -5,6 +5,7 @@
 #include "coveredRows.H"
 #include "fvMatrices.H"
 #include "volFields.H"
+#include "syncTools.H"
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
@@ -104,21 +105,8 @@ Foam::vector Foam::coveredRows::residualSum(const volVectorField& U) const
     }
 
     // Coupled faces: a_c^b u_c - b^b u_across (fvMatrix::addBoundarySource)
-    const fvMesh& mesh = U.mesh();
-    const polyBoundaryMesh& pbm = mesh.boundaryMesh();
-    vectorField across(mesh.nBoundaryFaces(), Zero);
-    forAll(pbm, patchi)
-    {
-        if (U.boundaryField()[patchi].coupled())
-        {
-            SubList<vector>
-            (
-                across,
-                pbm[patchi].size(),
-                pbm[patchi].start() - mesh.nInternalFaces()
-            ) = U.boundaryField()[patchi].patchNeighbourField();
-        }
-    }
+    vectorField across;
+    syncTools::swapBoundaryCellList(U.mesh(), U.primitiveField(), across);
     forAll(coupledFace_, k)
     {
         sum +=
