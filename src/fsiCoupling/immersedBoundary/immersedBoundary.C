@@ -11,6 +11,7 @@
 #include "syncTools.H"
 #include "coupledFvPatch.H"
 #include "triSurfaceSearch.H"
+#include "treeDataPrimitivePatch.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -174,44 +175,61 @@ void Foam::immersedBoundary::update
 }
 
 
-void Foam::immersedBoundary::locateWall(const triSurface& surface)
+void Foam::immersedBoundary::wallSegments
+(
+    DynamicList<label>& faces,
+    DynamicList<label>& cells,
+    DynamicList<point>& start,
+    DynamicList<point>& end
+) const
 {
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const volVectorField& C = mesh_.C();
 
-    // Cell centres across coupled faces
-    pointField nbrC;
-    syncTools::swapBoundaryCellList(mesh_, C.primitiveField(), nbrC);
-
-    // Segments from the covered to the fluid cell centre (those faces
-    // only)
-    const label nInt = internalFaces_.size();
-    DynamicList<label> cf(nFaces());
-    DynamicList<point> start(nFaces());
-    DynamicList<point> end(nFaces());
+    faces.clear();
+    cells.clear();
+    start.clear();
+    end.clear();
     forAll(internalFaces_, i)
     {
         const label facei = internalFaces_[i];
         const bool oc = covered(own[facei]);
         if (oc != covered(nei[facei]))
         {
-            cf.append(i);
-            start.append(C[oc ? own[facei] : nei[facei]]);
+            const label c = oc ? own[facei] : nei[facei];
+            faces.append(i);
+            cells.append(coveredIndex_[c]);
+            start.append(C[c]);
             end.append(C[oc ? nei[facei] : own[facei]]);
         }
     }
+
+    // Cell centres across coupled faces
+    pointField nbrC;
+    syncTools::swapBoundaryCellList(mesh_, C.primitiveField(), nbrC);
     forAll(boundaryFaces_, j)
     {
         const label facei = boundaryFaces_[j];
         const label o = mesh_.faceOwner()[facei];
         if (covered(o) && !nbrCovered(facei))
         {
-            cf.append(nInt + j);
+            faces.append(internalFaces_.size() + j);
+            cells.append(coveredIndex_[o]);
             start.append(C[o]);
             end.append(nbrC[facei - mesh_.nInternalFaces()]);
         }
     }
+}
+
+
+void Foam::immersedBoundary::locateWall(const triSurface& surface)
+{
+    DynamicList<label> faces(nFaces());
+    DynamicList<label> cells(nFaces());
+    DynamicList<point> start(nFaces());
+    DynamicList<point> end(nFaces());
+    wallSegments(faces, cells, start, end);
 
     const pointField segStart(std::move(start));
     const pointField segEnd(std::move(end));
@@ -225,8 +243,87 @@ void Foam::immersedBoundary::locateWall(const triSurface& surface)
         if (hits[k].hit())
         {
             const scalar d = mag(segEnd[k] - segStart[k]);
-            wallFraction_[cf[k]] =
+            wallFraction_[faces[k]] =
                 min(max(mag(hits[k].hitPoint() - segStart[k])/d, 0.0), 1.0);
+        }
+    }
+}
+
+
+void Foam::immersedBoundary::locateWall
+(
+    const UList<point>& points,
+    const UList<labelledTri>& triangles,
+    const CompactListList<label>& cellElements,
+    const CompactListList<label>& elementTriangles
+)
+{
+    DynamicList<label> faces(nFaces());
+    DynamicList<label> cells(nFaces());
+    DynamicList<point> start(nFaces());
+    DynamicList<point> end(nFaces());
+    wallSegments(faces, cells, start, end);
+
+    if (cellElements.size() != coveredCells_.size())
+    {
+        FatalErrorInFunction
+            << "elements listed for " << cellElements.size()
+            << " covered cells, but " << coveredCells_.size()
+            << " cells are covered: the lists must come from the same"
+            << " search (touching coverage)" << exit(FatalError);
+    }
+
+    // The first crossing from the covered cell's centre, as
+    // triSurfaceSearch::findLine (the same triangle test and tolerance)
+    const scalar tol =
+        indexedOctree<treeDataPrimitivePatch<triSurface>>::perturbTol();
+    const labelList& cellOffsets = cellElements.offsets();
+    const labelList& elements = cellElements.m();
+    const labelList& triOffsets = elementTriangles.offsets();
+    const labelList& tris = elementTriangles.m();
+
+    wallFraction_ = -1;
+    forAll(faces, k)
+    {
+        const point& a = start[k];
+        const vector dir(end[k] - a);
+        // (a triangle outside the segment's box is not crossed)
+        const boundBox segBb(min(a, end[k]), max(a, end[k]));
+        scalar lambda = GREAT;
+        const label ic = cells[k];
+        for (label i = cellOffsets[ic]; i < cellOffsets[ic + 1]; ++i)
+        {
+            const label e = elements[i];
+            for (label j = triOffsets[e]; j < triOffsets[e + 1]; ++j)
+            {
+                const labelledTri& t = triangles[tris[j]];
+                const point& p0 = points[t[0]];
+                const point& p1 = points[t[1]];
+                const point& p2 = points[t[2]];
+                if
+                (
+                    !segBb.overlaps
+                    (
+                        boundBox(min(p0, min(p1, p2)), max(p0, max(p1, p2)))
+                    )
+                )
+                {
+                    continue;
+                }
+                const pointHit hit
+                (
+                    triPointRef(p0, p1, p2)
+                   .intersection(a, dir, intersection::HALF_RAY, tol)
+                );
+                if (hit.hit() && hit.distance() <= 1)
+                {
+                    lambda = min(lambda, mag(hit.hitPoint() - a)/mag(dir));
+                }
+            }
+        }
+        if (lambda < GREAT)
+        {
+            wallFraction_[faces[k]] = min(max(lambda, 0.0), 1.0);
         }
     }
 }
@@ -239,7 +336,6 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::ghostVelocity
 {
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
-    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     const label nInt = internalFaces_.size();
     // r = lambda/(1 - lambda) at most 2 (lambda <= 2/3): the explicit
     // extrapolation stays a contraction for the fluid cell's row

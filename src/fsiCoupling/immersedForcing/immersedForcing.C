@@ -63,16 +63,12 @@ void Foam::fv::immersedForcing::update()
             << " s, pairs " << coupling_.searchTime() - searchTime0_ << " s"
             << endl;
     }
-    if (ghostWall_)
+    const clockValue locateStart(true);
+    locateWall();
+    if (debug)
     {
-        boundary_.locateWall
-        (
-            triSurface
-            (
-                surfaceTriangles_,
-                pointField(UIndirectList<point>(solid.points(), surfacePoints_))
-            )
-        );
+        Info<< "immersedForcing: wall location " << locateStart.elapsed()
+            << " s" << endl;
     }
     wallTime_ = double(wallStart.elapsed());
 
@@ -89,6 +85,34 @@ void Foam::fv::immersedForcing::update()
         << " in " << returnReduce(boundary_.nEnclosedRegions(), sumOp<label>())
         << " regions (pressure level fixed there)"
         << endl;
+}
+
+
+void Foam::fv::immersedForcing::locateWall()
+{
+    if (!ghostWall_)
+    {
+        return;
+    }
+    const pointField points
+    (
+        UIndirectList<point>(coupling_.solid().points(), surfacePoints_)
+    );
+    const immersedPairs& pairs = coupling_.pairs();
+    if (pairs.coverage() == immersedPairs::coverageType::touching)
+    {
+        boundary_.locateWall
+        (
+            points,
+            surfaceTriangles_,
+            pairs.nearElements(),
+            elementTriangles_
+        );
+    }
+    else
+    {
+        boundary_.locateWall(triSurface(surfaceTriangles_, points));
+    }
 }
 
 
@@ -271,70 +295,17 @@ Foam::fv::immersedForcing::immersedForcing
             << "solidProperties mesh" << exit(FatalIOError);
     }
 
-    // The solid's surface: tet faces that belong to one tet only
-    {
-        HashTable<label, triFace, Hash<triFace>> count;
-        for (const solidTet& e : coupling_.solid().elements())
-        {
-            const triFace faces[4] =
-            {
-                triFace(e[1], e[2], e[3]), triFace(e[0], e[3], e[2]),
-                triFace(e[0], e[1], e[3]), triFace(e[0], e[2], e[1])
-            };
-            for (const triFace& f : faces)
-            {
-                // key: the sorted labels
-                triFace key(f);
-                std::sort(key.begin(), key.end());
-                ++count(key, 0);
-            }
-        }
-        // compact numbering: the surface's own points
-        labelList local(coupling_.solid().points().size(), -1);
-        DynamicList<label> points;
-        DynamicList<labelledTri> tris(count.size());
-        forAllConstIters(count, iter)
-        {
-            if (iter.val() == 1)
-            {
-                triFace f(iter.key());
-                for (label& pointi : f)
-                {
-                    if (local[pointi] < 0)
-                    {
-                        local[pointi] = points.size();
-                        points.append(pointi);
-                    }
-                    pointi = local[pointi];
-                }
-                tris.append(labelledTri(f[0], f[1], f[2], 0));
-            }
-        }
-        surfaceTriangles_.transfer(tris);
-        surfacePoints_.transfer(points);
-    }
+    // The solid's surface, element by element (the wall location)
+    coupling_.solid().surface
+    (
+        surfaceTriangles_, surfacePoints_, elementTriangles_
+    );
 
     // Coverage of the initial configuration
     coupling_.updatePairs();
     coveredVelocity_ = coupling_.solidToFluid(coupling_.solid().velocities());
     boundary_.update(coupling_.pairs().coveredCells(), coveredVelocity_);
-    if (ghostWall_)
-    {
-        boundary_.locateWall
-        (
-            triSurface
-            (
-                surfaceTriangles_,
-                pointField
-                (
-                    UIndirectList<point>
-                    (
-                        coupling_.solid().points(), surfacePoints_
-                    )
-                )
-            )
-        );
-    }
+    locateWall();
     UIndirectList<scalar>
     (
         coverage_.primitiveFieldRef(), boundary_.coveredCells()

@@ -54,6 +54,7 @@ Foam::immersedPairs::immersedPairs
     candidateGap_(),
     candidateCentreGap_(),
     candidateX_(),
+    lastX_(),
     margin_(0),
     nCandidateUpdates_(0),
     nPairTests_(0),
@@ -63,7 +64,9 @@ Foam::immersedPairs::immersedPairs
     visitedBy_(),
     fillCells_(),
     stamp_(0),
-    slot_()
+    slot_(),
+    nearElements_(),
+    nearPairs_()
 {
     // a quarter of the smallest cell's size
     if (mesh_.nCells())
@@ -557,9 +560,11 @@ void Foam::immersedPairs::findCoveredCells
 
     const bool touching = (coverage_ == coverageType::touching);
 
-    // Touching: each node's motion since the candidate lists were built;
-    // an element's is the largest of its nodes'
+    // Touching: each node's motion since the last search (the kept gaps
+    // are relative to it) and since the candidate lists were built; an
+    // element's is the largest of its nodes'
     scalarField moved;
+    scalarField movedSinceLists;
     if (touching)
     {
         const clockValue start(true);
@@ -569,15 +574,28 @@ void Foam::immersedPairs::findCoveredCells
             Info<< "immersedPairs: candidate lists " << start.elapsed()
                 << " s" << endl;
         }
+        if (lastX_.size() != x.size())
+        {
+            lastX_ = x;
+        }
         moved.setSize(x.size());
+        movedSinceLists.setSize(x.size());
         forAll(x, i)
         {
-            moved[i] = mag(x[i] - candidateX_[i]);
+            moved[i] = mag(x[i] - lastX_[i]);
+            movedSinceLists[i] = mag(x[i] - candidateX_[i]);
         }
     }
-    auto elementMoved = [&](const tetLabels& t)
+    auto largest = [](const scalarField& m, const tetLabels& t)
     {
-        return max(max(moved[t[0]], moved[t[1]]), max(moved[t[2]], moved[t[3]]));
+        return max(max(m[t[0]], m[t[1]]), max(m[t[2]], m[t[3]]));
+    };
+    // A kept gap K (pair apart while the element moves less than K) after
+    // a motion me: K - me, or -1 (test it) when the motion may have
+    // closed it
+    auto rebased = [](const scalar K, const scalar me)
+    {
+        return K > me ? K - me : scalar(-1);
     };
 
     // Cell centres inside the elements (paper Eq. 50 with the solid's
@@ -614,27 +632,37 @@ void Foam::immersedPairs::findCoveredCells
         {
             gap = candidateGap_[e].cdata();
             centreGap = candidateCentreGap_[e].data();
-            me = elementMoved(t);
+            me = largest(moved, t);
         }
         // heights over the faces opposite each vertex (when needed)
         FixedList<scalar, 4> h(-1);
         const labelUList& cand = touching ? candidates_[e] : found;
         forAll(cand, k)
         {
-            // (the kept gaps first: read in order, the slots are not)
+            // (the kept gaps first: read in order, the slots are not; the
+            // centre distance not tested is rebased to this search)
             if (gap && (me < gap[k] || me < centreGap[k]))
             {
                 ++nPairsSkipped_;
+                centreGap[k] = rebased(centreGap[k], me);
                 continue;
             }
             const label celli = cand[k];
             if (slot[celli] >= 0)
             {
+                if (centreGap)
+                {
+                    centreGap[k] = rebased(centreGap[k], me);
+                }
                 continue;
             }
             ++nPairTests_;
             const tetWeights w(barycentric(C[celli], a, b, c, d));
             const bool in = insideTet(w);
+            if (centreGap && in)
+            {
+                centreGap[k] = -1;
+            }
             if (centreGap && !in)
             {
                 if (h[0] < 0)
@@ -650,8 +678,8 @@ void Foam::immersedPairs::findCoveredCells
                 {
                     dist = max(dist, -w[i]*h[i]);
                 }
-                // kept relative to candidateX_, with a round-off margin
-                centreGap[k] = (1 - 1e-9)*dist - me;
+                // from this search, with a round-off margin
+                centreGap[k] = (1 - 1e-9)*dist;
             }
             if (in)
             {
@@ -666,9 +694,12 @@ void Foam::immersedPairs::findCoveredCells
 
     if (!touching)
     {
+        nearElements_.setSize(0);
         return;
     }
+    nearPairs_.clear();
 
+    const clockValue touchStart(true);
     // Cells touched by the elements: a tet of the cell's CELL_TETS
     // decomposition (the one of the inside test) and the element intersect
     // (closed sets: touching counts), by separating axes (cellSeparation;
@@ -696,36 +727,52 @@ void Foam::immersedPairs::findCoveredCells
         labelList& cand = candidates_[e];
         scalarList& gap = candidateGap_[e];
         scalarList& centreGap = candidateCentreGap_[e];
-        const scalar me = elementMoved(t);
+        const scalar me = largest(moved, t);
+        const scalar meLists = largest(movedSinceLists, t);
         label nKept = 0;
+        // (written only where something changes: most pairs stay as they
+        // are, and the write-back of unchanged lists costs memory traffic)
         auto keep = [&](const label k, const scalar g)
         {
-            cand[nKept] = cand[k];
-            centreGap[nKept] = centreGap[k];
-            gap[nKept++] = g;
+            if (nKept != k)
+            {
+                cand[nKept] = cand[k];
+                centreGap[nKept] = centreGap[k];
+                gap[nKept] = g;
+            }
+            else if (gap[k] != g)
+            {
+                gap[k] = g;
+            }
+            ++nKept;
         };
         forAll(cand, k)
         {
             if (me < gap[k])
             {
                 ++nPairsSkipped_;
-                keep(k, gap[k]);
+                keep(k, gap[k] - me);
                 continue;
             }
             const label celli = cand[k];
             if (slot[celli] >= 0)
             {
-                keep(k, gap[k]);
+                // covered already: not tested, may touch
+                nearPairs_.append(labelPair(slot[celli], e));
+                keep(k, -1);
                 continue;
             }
             ++nPairTests_;
             const scalar g = cellSeparation(A, bb, celli);
             if (g >= 0)
             {
-                // apart: kept relative to candidateX_ (|x' - x| <= moved'
-                // + moved), with a relative margin for the round-off
-                const scalar kept = (1 - 1e-9)*g - me;
-                if (kept <= margin_)
+                // apart: kept from this search, with a relative margin for
+                // the round-off; dropped when the element cannot reach
+                // the cell before the lists are rebuilt (every node then
+                // stays within margin_ of candidateX_, so the element
+                // moves less than margin_ + meLists from here)
+                const scalar kept = (1 - 1e-9)*g;
+                if (kept - meLists <= margin_)
                 {
                     keep(k, kept);
                 }
@@ -744,6 +791,7 @@ void Foam::immersedPairs::findCoveredCells
             {
                 wi /= sum;
             }
+            nearPairs_.append(labelPair(coveredCells_.size(), e));
             slot[celli] = coveredCells_.size();
             coveredCells_.append(celli);
             coveringElement_.append(e);
@@ -756,6 +804,34 @@ void Foam::immersedPairs::findCoveredCells
             gap.setSize(nKept);
             centreGap.setSize(nKept);
         }
+    }
+
+    const double touchTime = touchStart.elapsed();
+    // (the kept gaps are now relative to these positions)
+    lastX_ = x;
+    const clockValue nearStart(true);
+    // The elements that may touch each covered cell, by cell (the pairs
+    // of a cell are those not skipped above: the kept gap is a lower
+    // bound of the distance, so a skipped pair is apart)
+    labelList nNear(coveredCells_.size(), 0);
+    for (const labelPair& p : nearPairs_)
+    {
+        ++nNear[p.first()];
+    }
+    nearElements_.setSize(nNear);
+    const labelList& offsets = nearElements_.offsets();
+    labelList& near = nearElements_.m();
+    nNear = 0;
+    for (const labelPair& p : nearPairs_)
+    {
+        near[offsets[p.first()] + nNear[p.first()]++] = p.second();
+    }
+    if (debug)
+    {
+        Info<< "immersedPairs: elements that may touch the covered cells "
+            << returnReduce(nearPairs_.size(), sumOp<label>())
+            << ", touching pass " << touchTime << " s, by cell "
+            << nearStart.elapsed() << " s" << endl;
     }
 }
 

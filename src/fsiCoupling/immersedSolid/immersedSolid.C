@@ -127,6 +127,75 @@ Foam::immersedSolid::immersedSolid
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
+void Foam::immersedSolid::surface
+(
+    List<labelledTri>& triangles,
+    labelList& surfacePoints,
+    CompactListList<label>& elementTriangles
+) const
+{
+    // The faces of a tet, outward for a positively oriented one
+    auto tetFace = [](const solidTet& t, const label i)
+    {
+        static const label vertex[4][3] =
+            {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+        return triFace(t[vertex[i][0]], t[vertex[i][1]], t[vertex[i][2]]);
+    };
+    auto sorted = [](triFace f)
+    {
+        std::sort(f.begin(), f.end());
+        return f;
+    };
+
+    HashTable<label, triFace, Hash<triFace>> count(4*elements_.size());
+    for (const solidTet& t : elements_)
+    {
+        for (label i = 0; i < 4; ++i)
+        {
+            ++count(sorted(tetFace(t, i)), 0);
+        }
+    }
+
+    // Element by element, on the surface's own points
+    labelList local(points_.size(), -1);
+    DynamicList<label> points;
+    DynamicList<labelledTri> tris;
+    labelList nTriangles(elements_.size(), 0);
+    forAll(elements_, e)
+    {
+        for (label i = 0; i < 4; ++i)
+        {
+            triFace f(tetFace(elements_[e], i));
+            if (count[sorted(f)] != 1)
+            {
+                continue;
+            }
+            for (label& pointi : f)
+            {
+                if (local[pointi] < 0)
+                {
+                    local[pointi] = points.size();
+                    points.append(pointi);
+                }
+                pointi = local[pointi];
+            }
+            tris.append(labelledTri(f[0], f[1], f[2], 0));
+            ++nTriangles[e];
+        }
+    }
+    triangles.transfer(tris);
+    surfacePoints.transfer(points);
+
+    // (the triangles are in element order)
+    elementTriangles.setSize(nTriangles);
+    labelList& m = elementTriangles.m();
+    forAll(m, i)
+    {
+        m[i] = i;
+    }
+}
+
+
 const Foam::labelList& Foam::immersedSolid::nodeSet
 (
     const word& name,

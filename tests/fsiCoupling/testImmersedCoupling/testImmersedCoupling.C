@@ -34,6 +34,7 @@ Description
 #include "deformableSolid.H"
 #include "immersedPairs.H"
 #include "immersedInterpolation.H"
+#include "immersedBoundary.H"
 #include "interpolation.H"
 #include "Random.H"
 #include "Function1.H"
@@ -622,6 +623,132 @@ int main(int argc, char *argv[])
                     }
                     return brute;
                 };
+                // nearElements (a superset of the touching elements of
+                // each covered cell) and the wall location from them
+                // against the octree of the whole surface
+                List<labelledTri> tris;
+                labelList surfPoints;
+                CompactListList<label> elemTris;
+                solid.surface(tris, surfPoints, elemTris);
+                immersedBoundary boundary(mesh);
+                auto checkNear = [&](const pointField& xx, const word& when)
+                {
+                    const labelUList& cov = pairs.coveredCells();
+                    const CompactListList<label>& near = pairs.nearElements();
+                    label nTouch = 0, nMissing = 0, nNear = 0;
+                    forAll(cov, i)
+                    {
+                        const labelHashSet listed(near[i]);
+                        nNear += listed.size();
+                        const label c = cov[i];
+                        forAll(solid.elements(), e)
+                        {
+                            const solidTet& t = solid.elements()[e];
+                            const FixedList<point, 4> A
+                                ({xx[t[0]], xx[t[1]], xx[t[2]], xx[t[3]]});
+                            treeBoundBox eb(A[0], A[0]);
+                            for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
+                            if (!cellBb[c].overlaps(eb))
+                            {
+                                continue;
+                            }
+                            bool hit = false;
+                            for
+                            (
+                                const tetIndices& ti
+                              : polyMeshTetDecomposition::cellTetIndices
+                                (
+                                    mesh, c
+                                )
+                            )
+                            {
+                                const tetPointRef tp(ti.tet(mesh));
+                                if
+                                (
+                                    immersedPairs::tetsIntersect
+                                    (
+                                        A,
+                                        FixedList<point, 4>
+                                            ({tp.a(), tp.b(), tp.c(), tp.d()})
+                                    )
+                                )
+                                {
+                                    hit = true;
+                                    break;
+                                }
+                            }
+                            if (hit)
+                            {
+                                ++nTouch;
+                                if (!listed.found(e)) ++nMissing;
+                            }
+                        }
+                    }
+                    reduce(nTouch, sumOp<label>());
+                    reduce(nMissing, sumOp<label>());
+                    reduce(nNear, sumOp<label>());
+                    Info<< "    " << when << ": touching element-cell pairs "
+                        << nTouch << ", listed by nearElements " << nNear
+                        << endl;
+                    check
+                    (
+                        "nearElements: touching pairs not listed",
+                        nMissing, 0, 0, nMissing == 0 && nTouch > 0
+                    );
+
+                    boundary.update(cov, vectorField(cov.size(), Zero));
+                    const pointField sp(UIndirectList<point>(xx, surfPoints));
+                    boundary.locateWall(triSurface(tris, sp));
+                    const scalarList octree(boundary.wallFraction());
+                    boundary.locateWall(sp, tris, near, elemTris);
+                    const scalarList& local = boundary.wallFraction();
+                    // negative control: the covering element only
+                    const labelUList& covering = pairs.coveringElement();
+                    CompactListList<label> one(labelList(cov.size(), 1));
+                    forAll(covering, i)
+                    {
+                        one.m()[i] = covering[i];
+                    }
+                    immersedBoundary control(mesh);
+                    control.update(cov, vectorField(cov.size(), Zero));
+                    control.locateWall(sp, tris, one, elemTris);
+                    label nOct = 0, nDiff = 0, nControl = 0;
+                    scalar maxDiff = 0;
+                    forAll(octree, k)
+                    {
+                        nOct += (octree[k] >= 0);
+                        nControl += (control.wallFraction()[k] >= 0);
+                        if ((octree[k] >= 0) != (local[k] >= 0)) ++nDiff;
+                        else maxDiff = max(maxDiff, mag(octree[k] - local[k]));
+                    }
+                    reduce(nOct, sumOp<label>());
+                    reduce(nDiff, sumOp<label>());
+                    reduce(nControl, sumOp<label>());
+                    reduce(maxDiff, maxOp<scalar>());
+                    Info<< "    " << when << ": walls located by the octree "
+                        << nOct << ", by the covering element alone "
+                        << nControl << " (negative control)" << endl;
+                    check
+                    (
+                        "wall location element by element: faces differing"
+                        " from the octree's",
+                        nDiff, 0, 0, nDiff == 0 && nOct > 0
+                    );
+                    check
+                    (
+                        "negative control (covering element only) locates"
+                        " fewer walls",
+                        nControl, nOct, 0, nControl < nOct
+                    );
+                    check
+                    (
+                        "wall location element by element: largest"
+                        " fraction difference",
+                        maxDiff, 0, 1e-12, maxDiff <= 1e-12
+                    );
+                };
+                checkNear(x, "initial position");
+
                 const labelHashSet brute(bruteTouching(x));
                 label nSame = 0;
                 for (const label c : brute)
@@ -651,6 +778,7 @@ int main(int argc, char *argv[])
                     xk += (k < 4 ? small : large);
                     pairs.findNodeCells(xk);
                     pairs.findCoveredCells(xk, solid.elements());
+                    checkNear(xk, k < 4 ? "moved by a small step" : "moved far");
                     const labelHashSet bk(bruteTouching(xk));
                     label nSameK = 0;
                     for (const label c : bk)
