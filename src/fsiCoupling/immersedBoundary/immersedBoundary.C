@@ -47,6 +47,12 @@ Foam::immersedBoundary::immersedBoundary
     nEnclosed_(0),
     refCells_(),
     enclosedFound_(false),
+    region_(mesh.nCells(), -1),
+    mark_(),
+    owner_(),
+    stamp_(0),
+    nFills_(0),
+    nLocalUpdates_(0),
     pName_("p"),
     nbrCovered_(mesh.nBoundaryFaces(), false),
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
@@ -64,24 +70,19 @@ void Foam::immersedBoundary::update
     const vectorField& coveredVelocity
 )
 {
-    // The same covered cells as the last update (then the enclosed fluid
-    // regions are those found then)
-    bool sameCells = coveredCells.size() == coveredCells_.size();
-    if (sameCells)
+    // The cells covered since the last update (the index is still the
+    // last update's) and those uncovered since
+    DynamicList<label> newlyCovered;
+    for (const label celli : coveredCells)
     {
-        for (const label celli : coveredCells)
+        if (coveredIndex_[celli] < 0)
         {
-            if (coveredIndex_[celli] < 0)
-            {
-                sameCells = false;
-                break;
-            }
+            newlyCovered.append(celli);
         }
     }
-    reduce(sameCells, andOp<bool>());
-
-    // (reset at the last update's cells only: no pass over all cells)
-    for (const label celli : coveredCells_)
+    labelList oldCells;
+    oldCells.transfer(coveredCells_);
+    for (const label celli : oldCells)
     {
         coveredIndex_[celli] = -1;
     }
@@ -91,8 +92,27 @@ void Foam::immersedBoundary::update
     {
         coveredIndex_[coveredCells_[i]] = i;
     }
+    DynamicList<label> newlyUncovered;
+    for (const label celli : oldCells)
+    {
+        if (coveredIndex_[celli] < 0)
+        {
+            newlyUncovered.append(celli);
+        }
+    }
 
-    if (!sameCells || !enclosedFound_)
+    // The enclosed fluid regions: kept, updated where the covered cells
+    // changed, or found afresh
+    const bool sameCells = returnReduce
+    (
+        newlyCovered.empty() && newlyUncovered.empty(),
+        andOp<bool>()
+    );
+    if
+    (
+        !enclosedFound_
+     || (!sameCells && !updateEnclosedFluid(newlyCovered, newlyUncovered))
+    )
     {
         findEnclosedFluid();
     }
@@ -461,6 +481,7 @@ void Foam::immersedBoundary::findEnclosedFluid()
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     const label nInternal = mesh_.nInternalFaces();
     const label nCells = mesh_.nCells();
+    ++nFills_;
 
     const labelListList& cellCells = mesh_.cellCells();
 
@@ -567,16 +588,289 @@ void Foam::immersedBoundary::findEnclosedFluid()
     // of each (this rank's part) gets a reference in constrainPressure
     refCells_.clear();
     const label nReached = tail;
+    region_ = -1;
+    for (label i = 0; i < nReached; ++i)
+    {
+        region_[queue[i]] = 0;
+    }
     forAll(reached, celli)
     {
         if (!reached[celli] && coveredIndex_[celli] < 0)
         {
+            const label first = tail;
             refCells_.append(celli);
             seed(celli);
             fill();
+            for (label i = first; i < tail; ++i)
+            {
+                region_[queue[i]] = refCells_.size();
+            }
         }
     }
     nEnclosed_ = tail - nReached;
+}
+
+
+bool Foam::immersedBoundary::updateEnclosedFluid
+(
+    const labelUList& newlyCovered,
+    const labelUList& newlyUncovered
+)
+{
+    // The regions of the last fill stay what they were when (a) every
+    // connected group of newly covered cells leaves its fluid neighbours
+    // connected to each other (then any path of fluid cells through the
+    // group can go round it), none of them being a seed of the fill or a
+    // reference cell; and (b) every connected group of newly uncovered
+    // cells borders fluid of one region only (it joins that region).
+    // Checked locally (within this rank, a bounded fill); anything else
+    // (a group on a processor face, regions that merge or split) asks for
+    // the whole fill. Same result as findEnclosedFluid (test
+    // fsiCoupling.enclosedUpdate).
+    const labelListList& cellCells = mesh_.cellCells();
+    const cellList& cells = mesh_.cells();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const volScalarField* pPtr = mesh_.findObject<volScalarField>(pName_);
+
+    bool ok = (pPtr != nullptr) && enclosedFound_;
+    if (mark_.size() != mesh_.nCells())
+    {
+        mark_.setSize(mesh_.nCells(), 0);
+        owner_.setSize(mesh_.nCells(), -1);
+        stamp_ = 0;
+    }
+    auto nextStamp = [&]()
+    {
+        if (++stamp_ == labelMax)
+        {
+            mark_ = 0;
+            stamp_ = 1;
+        }
+        return stamp_;
+    };
+
+    // A cell whose group is not local (a coupled face) or that seeds the
+    // fill (a face on a fixed-value pressure boundary)
+    const label refCell =
+        mesh_.solutionDict().subOrEmptyDict("CBS")
+       .getOrDefault<label>("pRefCell", 0);
+    auto special = [&](const label celli)
+    {
+        for (const label facei : cells[celli])
+        {
+            if (!mesh_.isInternalFace(facei))
+            {
+                const label patchi = pbm.whichPatch(facei);
+                if
+                (
+                    pbm[patchi].coupled()
+                 || (pPtr && pPtr->boundaryField()[patchi].fixesValue())
+                )
+                {
+                    return true;
+                }
+            }
+        }
+        return celli == refCell || refCells_.found(celli);
+    };
+
+    // (a) newly covered groups
+    const label inA = nextStamp();
+    for (const label celli : newlyCovered)
+    {
+        mark_[celli] = inA;
+    }
+    DynamicList<label> group;
+    DynamicList<label> targets;
+    DynamicList<label> queue;
+    labelList parent;
+    label nEnclosedCovered = 0;
+    for (const label start : newlyCovered)
+    {
+        if (!ok)
+        {
+            break;
+        }
+        if (mark_[start] != inA)
+        {
+            continue;   // grouped already
+        }
+        // the group and its fluid neighbours
+        const label grouped = nextStamp();
+        group.clear();
+        group.append(start);
+        mark_[start] = grouped;
+        targets.clear();
+        const label isTarget = nextStamp();
+        for (label i = 0; i < group.size() && ok; ++i)
+        {
+            const label celli = group[i];
+            if (special(celli))
+            {
+                ok = false;
+            }
+            if (region_[celli] > 0)
+            {
+                ++nEnclosedCovered;
+            }
+            for (const label nb : cellCells[celli])
+            {
+                if (mark_[nb] == inA)
+                {
+                    mark_[nb] = grouped;
+                    group.append(nb);
+                }
+                else if (!covered(nb) && mark_[nb] != isTarget)
+                {
+                    mark_[nb] = isTarget;
+                    targets.append(nb);
+                }
+            }
+        }
+        if (!ok || targets.size() < 2)
+        {
+            continue;
+        }
+        // fills from all targets at once through fluid cells, joining
+        // the targets whose fills meet (union-find), until one set is
+        // left or the budget is spent
+        const label visited = nextStamp();
+        parent.setSize(targets.size());
+        queue.clear();
+        forAll(targets, i)
+        {
+            parent[i] = i;
+            mark_[targets[i]] = visited;
+            owner_[targets[i]] = i;
+            queue.append(targets[i]);
+        }
+        auto find = [&](label i)
+        {
+            while (parent[i] != i)
+            {
+                parent[i] = parent[parent[i]];
+                i = parent[i];
+            }
+            return i;
+        };
+        label nSets = targets.size();
+        const label budget = 50*targets.size() + 1000;
+        for (label head = 0; head < queue.size() && nSets > 1; ++head)
+        {
+            if (queue.size() > budget)
+            {
+                break;
+            }
+            const label celli = queue[head];
+            for (const label nb : cellCells[celli])
+            {
+                if (covered(nb))
+                {
+                    continue;
+                }
+                if (mark_[nb] != visited)
+                {
+                    mark_[nb] = visited;
+                    owner_[nb] = owner_[celli];
+                    queue.append(nb);
+                }
+                else
+                {
+                    const label a = find(owner_[nb]);
+                    const label b = find(owner_[celli]);
+                    if (a != b)
+                    {
+                        parent[a] = b;
+                        --nSets;
+                    }
+                }
+            }
+        }
+        ok = (nSets == 1);
+    }
+
+    // (b) newly uncovered groups: the region of the fluid they border
+    DynamicList<label> joined;
+    DynamicList<label> joinedRegion;
+    const label inB = nextStamp();
+    for (const label celli : newlyUncovered)
+    {
+        mark_[celli] = inB;
+    }
+    for (const label start : newlyUncovered)
+    {
+        if (!ok)
+        {
+            break;
+        }
+        if (mark_[start] != inB)
+        {
+            continue;
+        }
+        const label grouped = nextStamp();
+        group.clear();
+        group.append(start);
+        mark_[start] = grouped;
+        label r = -1;
+        for (label i = 0; i < group.size() && ok; ++i)
+        {
+            const label celli = group[i];
+            if (special(celli))
+            {
+                ok = false;
+            }
+            for (const label nb : cellCells[celli])
+            {
+                if (mark_[nb] == inB)
+                {
+                    mark_[nb] = grouped;
+                    group.append(nb);
+                }
+                else if (!covered(nb) && mark_[nb] != grouped)
+                {
+                    // fluid before and now: its region is current
+                    if (r < 0)
+                    {
+                        r = region_[nb];
+                    }
+                    else if (region_[nb] != r)
+                    {
+                        ok = false;     // regions merge
+                    }
+                }
+            }
+        }
+        if (r < 0)
+        {
+            ok = false;                 // a new region
+        }
+        if (ok)
+        {
+            for (const label celli : group)
+            {
+                joined.append(celli);
+                joinedRegion.append(r);
+            }
+        }
+    }
+
+    if (!returnReduce(ok, andOp<bool>()))
+    {
+        return false;
+    }
+    for (const label celli : newlyCovered)
+    {
+        region_[celli] = -1;
+    }
+    label nEnclosedJoined = 0;
+    forAll(joined, i)
+    {
+        region_[joined[i]] = joinedRegion[i];
+        nEnclosedJoined += (joinedRegion[i] > 0);
+    }
+    nEnclosed_ += nEnclosedJoined - nEnclosedCovered;
+    ++nLocalUpdates_;
+    return true;
 }
 
 

@@ -20,6 +20,8 @@ Description
                        the cells a dense lattice of its points lies in
         -test coupling the immersedCoupling object over 5 steps of the rigid
                        motion: transfers exact for linear fields
+        -test enclosed the enclosed fluid regions kept up to date as the
+                       solid moves, against a whole fill each step
         -test outside  the solid shifted by -shift (x y z): must stop with
                        a FatalError
 
@@ -97,7 +99,7 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
-    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | outside");
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | enclosed | outside");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -895,6 +897,102 @@ int main(int argc, char *argv[])
         check("coupling: fluid->solid p max rel. error", ep, 0, 1e-10, ep < 1e-10);
         check("coupling: solid->fluid v max rel. error", ev, 0, 1e-10,
             ev < 1e-10 && nCovered > 0);
+    }
+    else if (test == "enclosed")
+    {
+        // The enclosed fluid regions kept up to date where the covered
+        // cells change (immersedBoundary::updateEnclosedFluid) against a
+        // whole fill of a fresh object, step by step of the rigid motion
+        // (a closed shell: the fluid inside is enclosed); p fixed on every
+        // boundary (the fill's seeds)
+        volScalarField p
+        (
+            IOobject("p", runTime.timeName(), mesh),
+            mesh,
+            dimensionedScalar(dimless, Zero),
+            "fixedValue"
+        );
+        dictionary d;
+        d.add("coverage", "touching");
+        immersedPairs pairs(mesh, d);
+        immersedBoundary boundary(mesh);
+        const label nSteps(args.getOrDefault<label>("steps", 12));
+        const scalar dt = runTime.deltaTValue();
+        label nWrong = 0, nChanged = 0, nEnclosedMin = labelMax;
+        boolList enclosed0;
+        for (label k = 0; k <= nSteps; ++k)
+        {
+            if (k)
+            {
+                solid.advance(dt);
+            }
+            const pointField& x = solid.points();
+            pairs.findNodeCells(x);
+            pairs.findCoveredCells(x, solid.elements());
+            const labelUList& cov = pairs.coveredCells();
+            boundary.update(cov, vectorField(cov.size(), Zero));
+            immersedBoundary fresh(mesh);
+            fresh.update(cov, vectorField(cov.size(), Zero));
+
+            // the same partition: region ids matched one to one
+            Map<label> toFresh, fromFresh;
+            label wrong = 0;
+            boolList enclosed(mesh.nCells(), false);
+            forAll(C, c)
+            {
+                const label a = boundary.region(c);
+                const label b = fresh.region(c);
+                enclosed[c] = b > 0;
+                if ((a > 0) != (b > 0) || (a < 0) != (b < 0))
+                {
+                    ++wrong;
+                }
+                else if (a > 0)
+                {
+                    if (!toFresh.found(a)) toFresh.insert(a, b);
+                    if (!fromFresh.found(b)) fromFresh.insert(b, a);
+                    if (toFresh[a] != b || fromFresh[b] != a) ++wrong;
+                }
+            }
+            if
+            (
+                boundary.nEnclosed() != fresh.nEnclosed()
+             || boundary.nEnclosedRegions() != fresh.nEnclosedRegions()
+            )
+            {
+                ++wrong;
+            }
+            nWrong += wrong;
+            nEnclosedMin = min(nEnclosedMin, fresh.nEnclosed());
+            if (k == 0)
+            {
+                enclosed0 = enclosed;
+            }
+            else
+            {
+                forAll(enclosed, c)
+                {
+                    nChanged += (enclosed[c] != enclosed0[c]);
+                }
+            }
+            Info<< "    step " << k << ": covered " << cov.size()
+                << ", enclosed cells " << fresh.nEnclosed() << " in "
+                << fresh.nEnclosedRegions() << " regions; kept up to date "
+                << boundary.nEnclosed() << " in "
+                << boundary.nEnclosedRegions() << endl;
+        }
+        Info<< "whole fills " << boundary.nFills() << ", local updates "
+            << boundary.nLocalUpdates() << " in " << nSteps << " steps; cells"
+            << " whose enclosure changed since step 0, summed over the"
+            << " steps: " << nChanged << endl;
+        check("enclosed regions kept up to date: cells or counts differing"
+            " from a whole fill", nWrong, 0, 0, nWrong == 0);
+        check("the shell encloses fluid at every step (smallest count)",
+            nEnclosedMin, 1, 0, nEnclosedMin > 0);
+        check("the enclosed cells change with the motion (the comparison"
+            " can fail)", nChanged, 1, 0, nChanged > 0);
+        check("local updates used", boundary.nLocalUpdates(), 1, 0,
+            boundary.nLocalUpdates() > 0);
     }
     else if (test == "outside")
     {
