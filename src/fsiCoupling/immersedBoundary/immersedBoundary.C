@@ -53,6 +53,8 @@ Foam::immersedBoundary::immersedBoundary
     stamp_(0),
     nFills_(0),
     nLocalUpdates_(0),
+    ramp_(false),
+    ramps_(),
     pName_("p"),
     nbrCovered_(mesh.nBoundaryFaces(), false),
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
@@ -118,6 +120,7 @@ void Foam::immersedBoundary::update
     }
 
     // Covered flag and solid velocity of the cells across coupled faces
+    const boolList oldNbrCovered(ramp_ ? nbrCovered_ : boolList());
     {
         const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
         const label nInternal = mesh_.nInternalFaces();
@@ -192,6 +195,11 @@ void Foam::immersedBoundary::update
     boundaryFaces_.transfer(boundary);
     wallFraction_.setSize(nFaces());
     wallFraction_ = -1;
+
+    if (ramp_)
+    {
+        updateRamps(newlyCovered, oldNbrCovered);
+    }
 }
 
 
@@ -895,6 +903,10 @@ void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
             us = coveredVelocity_[io >= 0 ? io : in];
         }
         phiI[facei] = us & Sf[facei];
+        if (ramp_ && (io < 0 || in < 0))
+        {
+            phiI[facei] = rampedFlux(facei, phiI[facei]);
+        }
     }
 
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
@@ -916,7 +928,139 @@ void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
             us = io >= 0 ? coveredVelocity_[io] : un;
         }
         phiB[patchi][i] = us & Sf.boundaryField()[patchi][i];
+        if (ramp_ && (io < 0 || !nc))
+        {
+            phiB[patchi][i] = rampedFlux(facei, phiB[patchi][i]);
+        }
     }
+}
+
+
+void Foam::immersedBoundary::updateRamps
+(
+    const labelUList& newlyCovered,
+    const boolList& oldNbrCovered
+)
+{
+    // A face between a covered and a fluid cell whose covered cell was
+    // fluid at the last update: its flux goes from the one it had (phi,
+    // the last step's, in this rank's orientation) to the solid's over
+    // the time the solid takes to move from the covered cell's centre to
+    // the fluid cell's, tau = |x_F - x_C|/|u_s|
+    const scalar t = mesh_.time().value();
+    const scalar dt = mesh_.time().deltaTValue();
+    const surfaceScalarField* phiPtr =
+        mesh_.findObject<surfaceScalarField>("phi");
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const vectorField& C = mesh_.cellCentres();
+    const label nInternal = mesh_.nInternalFaces();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+
+    // the ramps still running on faces still between covered and fluid
+    Map<ramp> running(2*ramps_.size());
+    auto keep = [&](const label facei)
+    {
+        const auto iter = ramps_.cfind(facei);
+        if (iter.found() && t - iter.val().start < iter.val().tau)
+        {
+            running.insert(facei, iter.val());
+        }
+    };
+    auto start = [&]
+    (
+        const label facei,
+        const scalar frozen,
+        const vector& us,
+        const scalar d
+    )
+    {
+        const scalar u = mag(us);
+        if (u > VSMALL)
+        {
+            // (started at the last step: its first weight is 1 - dt/tau)
+            running.set(facei, ramp{t - dt, d/u, frozen});
+        }
+    };
+
+    labelHashSet fresh(newlyCovered);
+    for (const label facei : internalFaces_)
+    {
+        const label o = own[facei];
+        const label n = nei[facei];
+        if (covered(o) == covered(n))
+        {
+            continue;
+        }
+        const label c = covered(o) ? o : n;
+        if (fresh.found(c) && phiPtr)
+        {
+            start
+            (
+                facei,
+                (*phiPtr)[facei],
+                coveredVelocity_[coveredIndex_[c]],
+                mag(C[n] - C[o])
+            );
+        }
+        else
+        {
+            keep(facei);
+        }
+    }
+    if (!boundaryFaces_.empty())
+    {
+        pointField nbrC;
+        syncTools::swapBoundaryCellList(mesh_, C, nbrC);
+        for (const label facei : boundaryFaces_)
+        {
+            const label o = mesh_.faceOwner()[facei];
+            const label bf = facei - nInternal;
+            if (covered(o) == nbrCovered_[bf])
+            {
+                continue;
+            }
+            const bool newly =
+                covered(o) ? fresh.found(o) : !oldNbrCovered[bf];
+            if (newly && phiPtr)
+            {
+                const label patchi = pbm.whichPatch(facei);
+                start
+                (
+                    facei,
+                    phiPtr->boundaryField()[patchi]
+                        [facei - pbm[patchi].start()],
+                    covered(o)
+                  ? coveredVelocity_[coveredIndex_[o]]
+                  : nbrVelocity_[bf],
+                    mag(nbrC[bf] - C[o])
+                );
+            }
+            else
+            {
+                keep(facei);
+            }
+        }
+    }
+    ramps_.transfer(running);
+}
+
+
+Foam::scalar Foam::immersedBoundary::rampedFlux
+(
+    const label facei,
+    const scalar solidFlux
+) const
+{
+    const auto iter = ramps_.cfind(facei);
+    if (!iter.found())
+    {
+        return solidFlux;
+    }
+    const ramp& r = iter.val();
+    const scalar w =
+        max(1 - (mesh_.time().value() - r.start)/r.tau, scalar(0));
+    return w*r.frozen + (1 - w)*solidFlux;
 }
 
 

@@ -458,6 +458,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 << exit(FatalIOError);
         }
         ghostWall_ = (wall == "ghost");
+        boundary_.setCoverRamp(coeffs_.getOrDefault<bool>("coverRamp", false));
         if (rhoFluid_ <= 0)
         {
             FatalIOErrorInFunction(coeffs_)
