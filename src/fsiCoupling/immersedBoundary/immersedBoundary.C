@@ -55,6 +55,7 @@ Foam::immersedBoundary::immersedBoundary
     nLocalUpdates_(0),
     ramp_(false),
     ramps_(),
+    updated_(false),
     pName_("p"),
     nbrCovered_(mesh.nBoundaryFaces(), false),
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
@@ -196,10 +197,13 @@ void Foam::immersedBoundary::update
     wallFraction_.setSize(nFaces());
     wallFraction_ = -1;
 
-    if (ramp_)
+    // (not at the first update: the initial covered cells were not
+    // covered by a motion)
+    if (ramp_ && updated_)
     {
         updateRamps(newlyCovered, oldNbrCovered);
     }
+    updated_ = true;
 }
 
 

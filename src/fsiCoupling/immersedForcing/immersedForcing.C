@@ -458,7 +458,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 << exit(FatalIOError);
         }
         ghostWall_ = (wall == "ghost");
-        boundary_.setCoverRamp(coeffs_.getOrDefault<bool>("coverRamp", false));
+        boundary_.setCoverRamp(coeffs_.getOrDefault<bool>("coverRamp", true));
         if (rhoFluid_ <= 0)
         {
             FatalIOErrorInFunction(coeffs_)

@@ -575,16 +575,53 @@ int main(int argc, char *argv[])
                         boundBox(mesh.points(), mesh.cellPoints()[c], false)
                     );
                 }
+                // element e at positions xx, and its bounding box
+                auto elementAt = [&]
+                (
+                    const pointField& xx,
+                    const label e,
+                    treeBoundBox& eb
+                )
+                {
+                    const solidTet& t = solid.elements()[e];
+                    const FixedList<point, 4> A
+                        ({xx[t[0]], xx[t[1]], xx[t[2]], xx[t[3]]});
+                    eb = treeBoundBox(A[0], A[0]);
+                    for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
+                    return A;
+                };
+                // a tet of the cell's CELL_TETS decomposition meets A
+                auto tetsMeet = [&](const FixedList<point, 4>& A, const label c)
+                {
+                    for
+                    (
+                        const tetIndices& ti
+                      : polyMeshTetDecomposition::cellTetIndices(mesh, c)
+                    )
+                    {
+                        const tetPointRef tp(ti.tet(mesh));
+                        if
+                        (
+                            immersedPairs::tetsIntersect
+                            (
+                                A,
+                                FixedList<point, 4>
+                                    ({tp.a(), tp.b(), tp.c(), tp.d()})
+                            )
+                        )
+                        {
+                            return true;
+                        }
+                    }
+                    return false;
+                };
                 auto bruteTouching = [&](const pointField& xx)
                 {
                     labelHashSet brute;
                     forAll(solid.elements(), e)
                     {
-                        const solidTet& t = solid.elements()[e];
-                        const FixedList<point, 4> A
-                            ({xx[t[0]], xx[t[1]], xx[t[2]], xx[t[3]]});
-                        treeBoundBox eb(A[0], A[0]);
-                        for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
+                        treeBoundBox eb;
+                        const FixedList<point, 4> A(elementAt(xx, e, eb));
                         forAll(cellBb, c)
                         {
                             if (brute.found(c) || !cellBb[c].overlaps(eb))
@@ -598,25 +635,8 @@ int main(int argc, char *argv[])
                                     C[c], A[0], A[1], A[2], A[3]
                                 )
                             );
-                            bool hit = immersedPairs::insideTet(w);
-                            for
-                            (
-                                const tetIndices& ti
-                              : polyMeshTetDecomposition::cellTetIndices
-                                (
-                                    mesh, c
-                                )
-                            )
-                            {
-                                if (hit) break;
-                                const tetPointRef tp(ti.tet(mesh));
-                                hit = immersedPairs::tetsIntersect
-                                (
-                                    A,
-                                    FixedList<point, 4>
-                                        ({tp.a(), tp.b(), tp.c(), tp.d()})
-                                );
-                            }
+                            const bool hit =
+                                immersedPairs::insideTet(w) || tetsMeet(A, c);
                             if (hit)
                             {
                                 brute.insert(c);
@@ -645,40 +665,13 @@ int main(int argc, char *argv[])
                         const label c = cov[i];
                         forAll(solid.elements(), e)
                         {
-                            const solidTet& t = solid.elements()[e];
-                            const FixedList<point, 4> A
-                                ({xx[t[0]], xx[t[1]], xx[t[2]], xx[t[3]]});
-                            treeBoundBox eb(A[0], A[0]);
-                            for (label k = 1; k < 4; ++k) { eb.add(A[k]); }
+                            treeBoundBox eb;
+                            const FixedList<point, 4> A(elementAt(xx, e, eb));
                             if (!cellBb[c].overlaps(eb))
                             {
                                 continue;
                             }
-                            bool hit = false;
-                            for
-                            (
-                                const tetIndices& ti
-                              : polyMeshTetDecomposition::cellTetIndices
-                                (
-                                    mesh, c
-                                )
-                            )
-                            {
-                                const tetPointRef tp(ti.tet(mesh));
-                                if
-                                (
-                                    immersedPairs::tetsIntersect
-                                    (
-                                        A,
-                                        FixedList<point, 4>
-                                            ({tp.a(), tp.b(), tp.c(), tp.d()})
-                                    )
-                                )
-                                {
-                                    hit = true;
-                                    break;
-                                }
-                            }
+                            const bool hit = tetsMeet(A, c);
                             if (hit)
                             {
                                 ++nTouch;
