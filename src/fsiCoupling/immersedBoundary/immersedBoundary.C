@@ -1012,8 +1012,8 @@ void Foam::immersedBoundary::updateRamps
             keep(facei);
         }
     }
-    if (!boundaryFaces_.empty())
     {
+        // (collective: every rank, with or without immersed coupled faces)
         pointField nbrC;
         syncTools::swapBoundaryCellList(mesh_, C, nbrC);
         for (const label facei : boundaryFaces_)
