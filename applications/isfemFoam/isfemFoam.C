@@ -10,12 +10,15 @@ Description
     2012). Fluid: incompressible, laminar, on a fixed mesh, advanced by a
     CBS-equivalent projection (class cbsProjectionFluid, Steps I-III of
     Sect. 4.1). Momentum sources, the immersed coupling among them, come
-    through fvOptions.
+    through fvOptions; with an immersed solid (fv::immersedForcing) each
+    time step is the coupled step of Sect. 4.4, phase by phase
+    (Foam::immersedFsi).
 
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
 #include "cbsProjectionFluid.H"
+#include "immersedFsi.H"
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
@@ -24,7 +27,8 @@ int main(int argc, char *argv[])
     argList::addNote
     (
         "Immersed smoothed FEM solver for fluid-structure interaction;"
-        " incompressible laminar fluid by a CBS-equivalent projection."
+        " incompressible laminar fluid by a CBS-equivalent projection,"
+        " immersed solids through fvOptions (immersedForcing)."
     );
 
     #include "addCheckCaseOptions.H"
@@ -33,20 +37,28 @@ int main(int argc, char *argv[])
     #include "createMesh.H"
 
     cbsProjectionFluid fluid(mesh);
+    immersedFsi fsi(mesh);
     fluid.setInitialDeltaT();
 
     Info<< "\nStarting time loop\n" << endl;
 
+    // One coupled time step, paper Sect. 4.4 (immersedFsi.H)
     while (runTime.run())
     {
         fluid.adjustDeltaT();
+        fsi.adjustDeltaT();
 
         ++runTime;
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
-        fluid.solve();
+        fsi.advanceSolid();     // (3.1) solid to t^{n+1}, FSI force of t^n
+        fsi.searchPairs();      // (3.2) FSI pairs, covered cells
+        fluid.solve();          // (3.3) projection, u = u_s where covered
+        fsi.updateForce();      // (3.4) FSI force for the next solid step
 
         runTime.write();
+        fsi.write();            // solid state (restart) and VTU
+
         runTime.printExecutionTime(Info);
     }
 

@@ -9,6 +9,8 @@
 #include "surfaceInterpolate.H"
 #include "linear.H"
 #include "syncTools.H"
+#include "OFstream.H"
+#include "IFstream.H"
 #include "coupledFvPatch.H"
 #include "triSurfaceSearch.H"
 #include "treeDataPrimitivePatch.H"
@@ -1047,6 +1049,102 @@ void Foam::immersedBoundary::updateRamps
         }
     }
     ramps_.transfer(running);
+}
+
+
+Foam::tmp<Foam::scalarField> Foam::immersedBoundary::immersedArea() const
+{
+    auto tA = tmp<scalarField>::New(coveredCells_.size(), Zero);
+    scalarField& A = tA.ref();
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const scalarField& magSf = mesh_.magSf();
+    for (const label facei : internalFaces_)
+    {
+        const label c = covered(own[facei]) ? own[facei] : nei[facei];
+        A[coveredIndex_[c]] += magSf[facei];
+    }
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    for (const label facei : boundaryFaces_)
+    {
+        const label o = mesh_.faceOwner()[facei];
+        if (covered(o))
+        {
+            const label patchi = pbm.whichPatch(facei);
+            A[coveredIndex_[o]] +=
+                mesh_.magSf().boundaryField()[patchi]
+                [facei - pbm[patchi].start()];
+        }
+    }
+    return tA;
+}
+
+
+void Foam::immersedBoundary::writeRamps(const fileName& file) const
+{
+    mkDir(file.path());
+    OFstream os(file);
+    os.precision(17);
+    const labelList faces(ramps_.sortedToc());
+    scalarList start(faces.size()), tau(faces.size()), frozen(faces.size());
+    forAll(faces, i)
+    {
+        const ramp& r = ramps_[faces[i]];
+        start[i] = r.start;
+        tau[i] = r.tau;
+        frozen[i] = r.frozen;
+    }
+    os  << "// immersedBoundary covering ramps (isfem restart state)" << nl;
+    os.writeEntry("faces", faces);
+    os.writeEntry("start", start);
+    os.writeEntry("tau", tau);
+    os.writeEntry("frozen", frozen);
+    if (!os.good())
+    {
+        FatalErrorInFunction
+            << "Cannot write " << file << exit(FatalError);
+    }
+}
+
+
+void Foam::immersedBoundary::readRamps(const fileName& file)
+{
+    if (!isFile(file))
+    {
+        return;
+    }
+    IFstream is(file);
+    const dictionary dict(is);
+    const labelList faces(dict.get<labelList>("faces"));
+    const scalarList start(dict.get<scalarList>("start"));
+    const scalarList tau(dict.get<scalarList>("tau"));
+    const scalarList frozen(dict.get<scalarList>("frozen"));
+    if
+    (
+        start.size() != faces.size()
+     || tau.size() != faces.size()
+     || frozen.size() != faces.size()
+    )
+    {
+        FatalIOErrorInFunction(dict)
+            << "The lists of " << file << " differ in length: the file is"
+            << " damaged; remove it (the ramps then restart) or restart"
+            << " from an earlier time" << exit(FatalIOError);
+    }
+    ramps_.clear();
+    forAll(faces, i)
+    {
+        if (faces[i] < 0 || faces[i] >= mesh_.nFaces())
+        {
+            FatalIOErrorInFunction(dict)
+                << "Face " << faces[i] << " of " << file << " is not a face"
+                << " of the mesh (" << mesh_.nFaces() << " faces): the"
+                << " file belongs to another mesh or decomposition"
+                << exit(FatalIOError);
+        }
+        ramps_.insert(faces[i], ramp{start[i], tau[i], frozen[i]});
+    }
+    updated_ = true;
 }
 
 

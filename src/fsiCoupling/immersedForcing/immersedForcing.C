@@ -26,15 +26,22 @@ namespace fv
 
 void Foam::fv::immersedForcing::update()
 {
+    advanceSolid();
+    searchPairs();
+}
+
+
+void Foam::fv::immersedForcing::advanceSolid()
+{
     const Time& runTime = mesh_.time();
-    if (updateIndex_ == runTime.timeIndex())
+    if (advanceIndex_ == runTime.timeIndex())
     {
         return;
     }
     endOfStep();
     writeDiagnostics();
     passes_ = 0;
-    updateIndex_ = runTime.timeIndex();
+    advanceIndex_ = runTime.timeIndex();
     stepIndex_ = runTime.timeIndex();
     searchTime0_ = coupling_.searchTime();
     transferTime0_ = coupling_.transferTime();
@@ -42,13 +49,44 @@ void Foam::fv::immersedForcing::update()
     wallTime_ = 0;
 
     immersedSolid& solid = coupling_.solid();
+    velocities0_ = solid.velocities();
     const scalar dt = runTime.value() - solid.time();
+    stepDeltaT_ = dt;
     const clockValue start(true);
     if (dt > 0)
     {
         solid.advance(dt);
     }
     advanceTime_ = double(start.elapsed());
+    if (debug)
+    {
+        const vectorField& v = solid.velocities();
+        label imax = 0;
+        forAll(v, i)
+        {
+            if (magSqr(v[i]) > magSqr(v[imax])) imax = i;
+        }
+        Info<< "immersedForcing: solid max |v| " << (v.size() ? mag(v[imax]) : 0)
+            << " at node " << imax << " X "
+            << (v.size() ? solid.points0()[imax] : Zero)
+            << ", |F| there " << mag(solid.externalForce()[imax])
+            << ", max |F| " << max(mag(solid.externalForce()))
+            << endl;
+    }
+}
+
+
+void Foam::fv::immersedForcing::searchPairs()
+{
+    const Time& runTime = mesh_.time();
+    if (searchIndex_ == runTime.timeIndex())
+    {
+        return;
+    }
+    advanceSolid();
+    searchIndex_ = runTime.timeIndex();
+
+    const immersedSolid& solid = coupling_.solid();
     coupling_.updatePairs();
 
     const immersedPairs& pairs = coupling_.pairs();
@@ -85,6 +123,113 @@ void Foam::fv::immersedForcing::update()
         << " in " << returnReduce(boundary_.nEnclosedRegions(), sumOp<label>())
         << " regions (pressure level fixed there)"
         << endl;
+}
+
+
+void Foam::fv::immersedForcing::readAddedMass(const dictionary& dict)
+{
+    const immersedSolid& solid = coupling_.solid();
+    addedMassLength_ = 0;
+    if (!solid.isDeformable())
+    {
+        return;
+    }
+    const boundBox bb(solid.points0(), false);
+    addedMassLength_ = dict.getOrDefault<scalar>
+    (
+        "addedMassLength", 0.5*cmptMax(bb.span())
+    );
+    if (addedMassLength_ < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "addedMassLength " << addedMassLength_ << " is negative: give"
+            << " a length [m] (0 switches the stabilisation off)"
+            << exit(FatalIOError);
+    }
+}
+
+
+void Foam::fv::immersedForcing::setAddedMass()
+{
+    immersedSolid& solid = coupling_.solid();
+    if (!solid.isDeformable() || addedMassLength_ <= 0)
+    {
+        return;
+    }
+    // rho_f l times each covered cell's immersed face area, spread to the
+    // solid nodes by the weights that spread its traction (the nodes that
+    // take a cell's force take its added mass), summed over the ranks
+    const scalarField A(boundary_.immersedArea());
+    const List<solidTet>& elements = solid.elements();
+    const immersedPairs& pairs = coupling_.pairs();
+    const labelUList& element = pairs.coveringElement();
+    const UList<immersedPairs::tetWeights>& w = pairs.weights();
+    addedMass_.setSize(solid.points().size());
+    addedMass_ = Zero;
+    forAll(A, i)
+    {
+        const solidTet& e = elements[element[i]];
+        for (label k = 0; k < 4; ++k)
+        {
+            addedMass_[e[k]] += w[i][k]*A[i];
+        }
+    }
+    reduce(addedMass_, sumOp<scalarField>());
+    addedMass_ *= rhoFluid_*addedMassLength_;
+    solid.setAddedMass(addedMass_);
+}
+
+
+Foam::scalar Foam::fv::immersedForcing::maxDeltaT(const scalar maxCo) const
+{
+    const immersedSolid& solid = coupling_.solid();
+    const labelList& cells = coupling_.pairs().nodeCells();
+    const vectorField& v = solid.velocities();
+    const scalarField& V = mesh_.V();
+
+    // cell size: the cube root of the volume, or in a 2D case the root of
+    // the area (volume over the depth of the empty direction)
+    const Vector<label>& solD = mesh_.solutionD();
+    const vector span(mesh_.bounds().span());
+    scalar depth = 1;
+    label nD = 0;
+    for (direction d = 0; d < vector::nComponents; ++d)
+    {
+        if (solD[d] == -1)
+        {
+            depth *= span[d];
+        }
+        else
+        {
+            ++nD;
+        }
+    }
+    scalar dt = GREAT;
+    forAll(cells, i)
+    {
+        const label celli = cells[i];
+        const scalar u = mag(v[i]);
+        if (celli >= 0 && u > VSMALL)
+        {
+            const scalar h = Foam::pow(V[celli]/depth, 1.0/max(nD, 1));
+            dt = min(dt, maxCo*h/u);
+        }
+    }
+    return returnReduce(dt, minOp<scalar>());
+}
+
+
+void Foam::fv::immersedForcing::write()
+{
+    const Time& runTime = mesh_.time();
+    if (!runTime.writeTime())
+    {
+        return;
+    }
+    const fileName dir(runTime.timePath()/"uniform"/"immersedSolid");
+    coupling_.solid().writeState(dir);
+    boundary_.writeRamps(dir/"coverRamps");
+    coupling_.solid().write();
 }
 
 
@@ -154,6 +299,18 @@ void Foam::fv::immersedForcing::fluidForce
     }
     reduce(f, sumOp<vectorField>());
     force_ = sum(f);
+
+    // Added-mass stabilisation of the explicit coupling: the solid's next
+    // step divides by m + m_a, so m_a times the acceleration of this step
+    // goes back into the force (the same on every rank: replicated solid)
+    if (addedMass_.size() && stepDeltaT_ > 0)
+    {
+        const vectorField& v = solid.velocities();
+        forAll(f, i)
+        {
+            f[i] += addedMass_[i]*(v[i] - velocities0_[i])/stepDeltaT_;
+        }
+    }
 }
 
 void Foam::fv::immersedForcing::writeDiagnostics()
@@ -250,7 +407,13 @@ Foam::fv::immersedForcing::immersedForcing
         "zeroGradient"
     ),
     coveredVelocity_(),
-    updateIndex_(-1),
+    advanceIndex_(-1),
+    searchIndex_(-1),
+    addedMass_(),
+    velocities0_(),
+    stepDeltaT_(0),
+    addedMassLength_(0),
+    probes_(coupling_.solid()),
     rhoFluid_(0),
     boundary_(mesh),
     force_(Zero),
@@ -301,6 +464,24 @@ Foam::fv::immersedForcing::immersedForcing
         surfaceTriangles_, surfacePoints_, elementTriangles_
     );
 
+    // A restart: the solid's state of the start time
+    const fileName stateDir
+    (
+        mesh.time().timePath()/"uniform"/"immersedSolid"
+    );
+    if (coupling_.solid().readState(stateDir))
+    {
+        Info<< type() << ' ' << name_ << ": solid state read from "
+            << stateDir << " (t = " << coupling_.solid().time() << ")"
+            << endl;
+    }
+    else if (coupling_.solid().isDeformable())
+    {
+        Info<< type() << ' ' << name_ << ": no solid state in " << stateDir
+            << ": the solid starts from its mesh, at rest" << endl;
+    }
+    velocities0_ = coupling_.solid().velocities();
+
     // Coverage of the initial configuration
     coupling_.updatePairs();
     coveredVelocity_ = coupling_.solidToFluid(coupling_.solid().velocities());
@@ -311,7 +492,19 @@ Foam::fv::immersedForcing::immersedForcing
         coverage_.primitiveFieldRef(), boundary_.coveredCells()
     ) = 1.0;
     coverage_.correctBoundaryConditions();
-    updateIndex_ = mesh.time().timeIndex();
+    advanceIndex_ = mesh.time().timeIndex();
+    searchIndex_ = mesh.time().timeIndex();
+
+    // the running covering ramps of a restart
+    boundary_.readRamps(stateDir/"coverRamps");
+
+    // the added mass of the first step
+    setAddedMass();
+    Info<< type() << ' ' << name_ << ": added mass " << sum(addedMass_)
+        << " kg (addedMassLength " << addedMassLength_ << " m)" << endl;
+
+    // the solid's output at the start time
+    coupling_.solid().write(true);
 }
 
 
@@ -418,6 +611,7 @@ void Foam::fv::immersedForcing::endOfStep()
     const volVectorField& U =
         mesh_.lookupObject<volVectorField>(fieldNames_.first());
     const clockValue start(true);
+    setAddedMass();
     fluidForce(p, U);
     source_ = fluidSource(U);
     forceTime_ += double(start.elapsed());
@@ -435,6 +629,8 @@ void Foam::fv::immersedForcing::endOfStep()
     reduce(n, sumOp<label>());
     reduce(maxUs, maxOp<scalar>());
     slip_ = Foam::sqrt(sum2/max(n, 1))/(maxUs > SMALL ? maxUs : 1);
+
+    probes_.write(coupling_.solid(), mesh_.time());
 
     Info<< type() << ' ' << name_ << ": force on the solid " << force_
         << ", momentum source on the fluid " << source_ << endl;
@@ -458,6 +654,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 << exit(FatalIOError);
         }
         ghostWall_ = (wall == "ghost");
+        readAddedMass(coeffs_);
         boundary_.setCoverRamp(coeffs_.getOrDefault<bool>("coverRamp", true));
         if (rhoFluid_ <= 0)
         {

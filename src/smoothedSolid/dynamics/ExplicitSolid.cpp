@@ -461,11 +461,21 @@ void ExplicitSolid::step(double dt)
     // The stable step bound, from the domain F's this force evaluation made
     if (++boundAge_ >= boundInterval_) refreshBound();
 
-    const double c = 0.5 * options_.damping * dtAvg;
-    const double a = (1.0 - c) / (1.0 + c);
-    const double b = dtAvg / (1.0 + c);
+    if (addedMass_.empty()) {
+        const double c = 0.5 * options_.damping * dtAvg;
+        const double a = (1.0 - c) / (1.0 + c);
+        const double b = dtAvg / (1.0 + c);
 #pragma omp parallel for schedule(static)
-    for (int i = 0; i < nn; ++i) vHalf_[i] = a * vHalf_[i] + (b / mass_[i]) * work_[i];
+        for (int i = 0; i < nn; ++i) vHalf_[i] = a * vHalf_[i] + (b / mass_[i]) * work_[i];
+    } else {
+        // (m + m_a)(v+ - v-)/dt = f - damping m (v+ + v-)/2
+#pragma omp parallel for schedule(static)
+        for (int i = 0; i < nn; ++i) {
+            const double M = mass_[i] + addedMass_[i];
+            const double c = 0.5 * options_.damping * dtAvg * mass_[i] / M;
+            vHalf_[i] = ((1.0 - c) / (1.0 + c)) * vHalf_[i] + (dtAvg / ((1.0 + c) * M)) * work_[i];
+        }
+    }
     applyConstraints(dt);
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < nn; ++i) u_[i] += dt * vHalf_[i];
@@ -473,6 +483,21 @@ void ExplicitSolid::step(double dt)
     t_ += dt;
     dtLast_ = dt;
     ++nSteps_;
+}
+
+void ExplicitSolid::setAddedMass(std::vector<double> m)
+{
+    if (!m.empty() && static_cast<int>(m.size()) != mesh_->nNodes()) {
+        throw Error("ExplicitSolid::setAddedMass: " + std::to_string(m.size()) +
+                    " values for " + std::to_string(mesh_->nNodes()) + " nodes");
+    }
+    for (std::size_t i = 0; i < m.size(); ++i) {
+        if (!(m[i] >= 0) || !std::isfinite(m[i])) {
+            throw Error("ExplicitSolid::setAddedMass: node " + std::to_string(i) +
+                        " has a negative or non-finite added mass");
+        }
+    }
+    addedMass_ = std::move(m);
 }
 
 // Sub-steps of equal size within what is left of dt, re-chosen after each

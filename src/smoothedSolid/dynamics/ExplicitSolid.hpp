@@ -58,6 +58,17 @@ public:
     // with the step's start time, to update time-dependent loads through
     // externalForce() and setBodyForce(); none by default
     void setLoadUpdate(std::function<void(double t)> update) { loadUpdate_ = std::move(update); }
+    // Added mass per node (non-negative, one per node; empty: none): the
+    // velocity update divides the force by lumpedMass() + addedMass, while
+    // body force, damping force and kinetic energy keep the solid's own
+    // mass. A partitioned fluid-structure coupling uses it to stabilise an
+    // explicit (Dirichlet-Neumann) scheme against added-mass instability,
+    // the caller adding addedMass * (its estimate of the acceleration) to
+    // the external force so that the steady state is unchanged. The stable
+    // step keeps the solid's own mass (conservative). Not part of the
+    // saved state: set it again before loadState().
+    void setAddedMass(std::vector<double> m);
+    const std::vector<double>& addedMass() const { return addedMass_; }
 
     // --- fibre directions (fibre-reinforced materials) --------------------
     // One direction per element in the reference configuration (normalised
@@ -188,6 +199,7 @@ private:
     std::vector<std::vector<Vec3>> fibreDomain_;
 
     std::vector<double> mass_;
+    std::vector<double> addedMass_;
     StableStepBound bound_;
     std::vector<double> nodeOmega2_;
     double omega2Max_ = 0;

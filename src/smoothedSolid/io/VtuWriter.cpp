@@ -2,6 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
+
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -77,6 +79,47 @@ VtuSeries::VtuSeries(std::string directory, std::string name)
 
 void VtuSeries::write(const ExplicitSolid& solid, const NodalFields& extra)
 {
+    char index[32];
+    std::snprintf(index, sizeof index, "%06d", count());
+    write(solid, extra, index, solid.time());
+}
+
+void VtuSeries::resume(double time)
+{
+    times_.clear();
+    const std::string path = directory_ + "/" + name_ + ".pvd";
+    std::ifstream is(path);
+    if (!is) return;
+    std::string line;
+    bool collection = false;
+    while (std::getline(is, line)) {
+        if (line.find("type=\"Collection\"") != std::string::npos) collection = true;
+        const auto ts = line.find("timestep=\"");
+        const auto fs = line.find("file=\"");
+        if (ts == std::string::npos || fs == std::string::npos) continue;
+        const auto te = line.find('"', ts + 10);
+        const auto fe = line.find('"', fs + 6);
+        if (te == std::string::npos || fe == std::string::npos) {
+            throw Error("cannot read the collection '" + path + "': bad line '" + line + "'");
+        }
+        double t = 0;
+        try {
+            t = std::stod(line.substr(ts + 10, te - ts - 10));
+        } catch (const std::exception&) {
+            throw Error("cannot read the collection '" + path + "': bad time in '" + line + "'");
+        }
+        if (t <= time * (1 + 1e-12) + 1e-300) times_.emplace_back(t, line.substr(fs + 6, fe - fs - 6));
+    }
+    if (!collection) {
+        throw Error("'" + path + "' is not a VTK collection (.pvd): remove it or choose another "
+                    "output directory");
+    }
+    writePvd();
+}
+
+void VtuSeries::write(const ExplicitSolid& solid, const NodalFields& extra,
+                      const std::string& label, double time)
+{
     const TetMesh& mesh = solid.mesh();
     const int nn = mesh.nNodes(), ne = mesh.nElements();
 
@@ -101,9 +144,7 @@ void VtuSeries::write(const ExplicitSolid& solid, const NodalFields& extra)
         offsets[e] = 4 * (e + 1);
     }
 
-    char index[32];
-    std::snprintf(index, sizeof index, "_%06d.vtu", count());
-    const std::string file = name_ + index;
+    const std::string file = name_ + "_" + label + ".vtu";
     std::ofstream os(directory_ + "/" + file);
     if (!os) throw Error("cannot write '" + directory_ + "/" + file + "'");
     os << "<?xml version=\"1.0\"?>\n"
@@ -154,7 +195,11 @@ void VtuSeries::write(const ExplicitSolid& solid, const NodalFields& extra)
     os << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
     if (!os) throw Error("error while writing '" + directory_ + "/" + file + "'");
 
-    times_.emplace_back(solid.time(), file);
+    // (a file written again, e.g. after a restart, replaces its entry)
+    times_.erase(std::remove_if(times_.begin(), times_.end(),
+                                [&](const auto& tf) { return tf.second == file || tf.first >= time; }),
+                 times_.end());
+    times_.emplace_back(time, file);
     writePvd();
 }
 
@@ -166,6 +211,7 @@ void VtuSeries::writePvd() const
     os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
           "  <Collection>\n";
     for (const auto& [t, file] : times_) {
+        os.precision(17);
         os << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << file << "\"/>\n";
     }
     os << "  </Collection>\n</VTKFile>\n";

@@ -25,6 +25,17 @@ public:
     // F a0 / |F a0| ("fibreDirection") and stretch |F a0| ("fibreStretch")
     void write(const ExplicitSolid& solid, const NodalFields& extra = {});
 
+    // The same, as <directory>/<name>_<label>.vtu (e.g. a caller's time
+    // name) at collection time 'time'
+    void write(const ExplicitSolid& solid, const NodalFields& extra, const std::string& label,
+               double time);
+
+    // Continue the collection already in <directory>/<name>.pvd (a
+    // restarted run): its data sets up to and including 'time' are kept,
+    // later ones dropped. No file: an empty collection. A file that is not
+    // a collection written by this class throws naming it.
+    void resume(double time);
+
     int count() const { return static_cast<int>(times_.size()); }
 
 private:

@@ -146,3 +146,62 @@ TEST(Dynamics, InternalForceIndependentOfThreadCount)
     EXPECT_EQ(worst, 0.0);
     EXPECT_THROW(setNumThreads(0), Error);
 }
+
+// Added mass (setAddedMass): a solid of density rho with added mass k m per
+// node under an external tip force moves exactly as the same solid of
+// density (1 + k) rho (internal forces do not depend on the density), step
+// by step at the same dt; with damping, the damping force keeps the solid's
+// own mass: c m v = (c/(1+k)) (1+k) m v
+TEST(Dynamics, AddedMassEqualsHeavierSolid)
+{
+    const double mu = 1e5, nu = 0.3, k = 2.5, c = 4.0;
+    const double K = 2 * mu * (1 + nu) / (3 * (1 - 2 * nu));
+    auto make = [&](double rho, double damping) {
+        TetMesh mesh = TetMesh::box(10, 2, 2, [](const Vec3& x) {
+            return Vec3(1.0 * x.x(), 0.1 * x.y(), 0.1 * x.z());
+        });
+        ExplicitSolid s(std::move(mesh), std::make_shared<NeoHookean>(mu, K, rho),
+                        {Formulation::Selective, 0.8, damping});
+        s.fix("xmin");
+        return s;
+    };
+    ExplicitSolid light = make(1000.0, c), heavy = make(1000.0 * (1 + k), c / (1 + k));
+    std::vector<double> ma(light.lumpedMass());
+    for (double& m : ma) m *= k;
+    light.setAddedMass(ma);
+    for (std::size_t i = 0; i < light.externalForce().size(); ++i) {
+        const double x = light.mesh().coordinates()[i].x();
+        light.externalForce()[i] = heavy.externalForce()[i] = Vec3(0, 10.0 * x, 0);
+    }
+    const double dt = light.stableTimeStep();
+    double worst = 0, scale = 0;
+    for (int n = 0; n < 400; ++n) {
+        light.step(dt);
+        heavy.step(dt);
+        for (std::size_t i = 0; i < ma.size(); ++i) {
+            worst = std::max(worst, (light.displacement()[i] - heavy.displacement()[i]).norm());
+            scale = std::max(scale, heavy.displacement()[i].norm());
+        }
+    }
+    std::printf("added mass vs heavier solid: largest difference %.3g of largest displacement %.3g\n",
+                worst, scale);
+    EXPECT_GT(scale, 1e-4);
+    EXPECT_LT(worst, 1e-10 * scale);
+
+    // Negative control: without the added mass the light solid moves faster
+    ExplicitSolid bare = make(1000.0, c);
+    bare.externalForce() = heavy.externalForce();
+    ExplicitSolid heavy2 = make(1000.0 * (1 + k), c / (1 + k));
+    heavy2.externalForce() = heavy.externalForce();
+    double diff = 0;
+    for (int n = 0; n < 400; ++n) {
+        bare.step(dt);
+        heavy2.step(dt);
+    }
+    for (std::size_t i = 0; i < ma.size(); ++i) {
+        diff = std::max(diff, (bare.displacement()[i] - heavy2.displacement()[i]).norm());
+    }
+    EXPECT_GT(diff, 0.1 * scale);
+
+    EXPECT_THROW(light.setAddedMass(std::vector<double>(3, 1.0)), Error);
+}

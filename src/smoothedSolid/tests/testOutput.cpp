@@ -417,3 +417,51 @@ TEST(Output, VtuWritesFibreDirectionAndStretch)
     EXPECT_LT(worst, 1e-12);
     EXPECT_EQ(f.arrays.at("fibreDirection").section, "CellData");
 }
+
+// Files named by a caller's label (an OpenFOAM time name); a restarted run
+// resumes the collection: data sets up to the restart time kept, later ones
+// dropped, the new ones appended
+TEST(Output, VtuSeriesLabelsAndResume)
+{
+    ExplicitSolid solid = smallBeam();
+    const std::string dir = test::tempDir() + "/vtuResume";
+    auto entries = [&] {
+        std::ifstream is(dir + "/beam.pvd");
+        std::vector<std::string> files;
+        std::string line;
+        while (std::getline(is, line)) {
+            const auto f = line.find("file=\"");
+            if (f != std::string::npos) files.push_back(line.substr(f + 6, line.find('"', f + 6) - f - 6));
+        }
+        return files;
+    };
+    {
+        VtuSeries series(dir, "beam");
+        series.write(solid, {}, "0.1", 0.1);
+        series.write(solid, {}, "0.2", 0.2);
+        series.write(solid, {}, "0.3", 0.3);
+    }
+    EXPECT_EQ(entries(), (std::vector<std::string>{"beam_0.1.vtu", "beam_0.2.vtu", "beam_0.3.vtu"}));
+    {
+        VtuSeries series(dir, "beam");
+        series.resume(0.2);
+        EXPECT_EQ(series.count(), 2);
+        series.write(solid, {}, "0.25", 0.25);
+    }
+    EXPECT_EQ(entries(), (std::vector<std::string>{"beam_0.1.vtu", "beam_0.2.vtu", "beam_0.25.vtu"}));
+    std::ifstream vtu(dir + "/beam_0.25.vtu");
+    EXPECT_TRUE(vtu.good());
+
+    // Not a collection: a clear error naming the file
+    {
+        std::ofstream bad(dir + "/other.pvd");
+        bad << "something else\ntimestep=\"1\" file=\"x\"\n";
+    }
+    VtuSeries other(dir, "other");
+    try {
+        other.resume(1.0);
+        ADD_FAILURE() << "no error for a file that is not a collection";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("other.pvd"), std::string::npos) << e.what();
+    }
+}

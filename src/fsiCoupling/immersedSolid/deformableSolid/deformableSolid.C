@@ -13,6 +13,8 @@
 #include "deformableSolid.H"
 #include "addToRunTimeSelectionTable.H"
 #include "Switch.H"
+#include "OFstream.H"
+#include "IFstream.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -397,13 +399,22 @@ Foam::immersedSolids::deformable::deformable
     if (dict_.found("output"))
     {
         const dictionary& o = dict_.subDict("output");
-        checkKeys(o, {"directory"});
+        checkKeys(o, {"directory", "probes"});
         fileName dir(o.getOrDefault<fileName>("directory", "VTK/solid"));
         if (!dir.isAbsolute())
         {
             dir = runTime.globalPath()/dir;
         }
-        vtu_.reset(new smoothedSolid::VtuSeries(dir, "solid"));
+        guarded(o, "directory", [&]
+        {
+            vtu_.reset(new smoothedSolid::VtuSeries(dir, "solid"));
+            // a restarted run continues the collection (later data sets,
+            // from a run that went further, are dropped)
+            if (Pstream::master())
+            {
+                vtu_->resume(runTime.value());
+            }
+        });
     }
 
     fromSolid();
@@ -436,7 +447,15 @@ void Foam::immersedSolids::deformable::advance(const scalar dt)
             << err.what() << exit(FatalError);
     }
     time_ += dt;
+    // the velocity the fluid sees: the mean over the step, (x^{n+1} -
+    // x^n)/dt, consistent with the solid's displacement (the faces' flux
+    // sweeps the volume the solid moved through) and blind to the
+    // solid's vibrations faster than the fluid step, which the
+    // half-step velocity of the last sub-step would hand to the fluid
+    // at a random phase
+    const pointField x0(points_);
     fromSolid();
+    velocities_ = (points_ - x0)/dt;
 }
 
 
@@ -466,12 +485,122 @@ Foam::immersedSolids::deformable::lumpedMass() const
 }
 
 
-void Foam::immersedSolids::deformable::write() const
+void Foam::immersedSolids::deformable::write(const bool force) const
 {
-    if (vtu_ && runTime_.writeTime() && Pstream::master())
+    if (vtu_ && (force || runTime_.writeTime()) && Pstream::master())
     {
-        vtu_->write(*solid_);
+        try
+        {
+            std::vector<double> cp = solid_->contactPressure();
+            cp.resize(points_.size(), 0.0);
+            vtu_->write
+            (
+                *solid_, {{"contactPressure", cp}},
+                runTime_.timeName(), runTime_.value()
+            );
+        }
+        catch (const smoothedSolid::Error& err)
+        {
+            FatalErrorInFunction
+                << "Entry 'output' in " << dict_.name() << ": "
+                << err.what() << exit(FatalError);
+        }
     }
+}
+
+
+void Foam::immersedSolids::deformable::setAddedMass(const scalarField& m)
+{
+    solid_->setAddedMass(std::vector<double>(m.begin(), m.end()));
+}
+
+
+void Foam::immersedSolids::deformable::writeState(const fileName& dir) const
+{
+    // the external force held for the next step goes with the state
+    std::vector<smoothedSolid::Vec3>& f = solid_->externalForce();
+    forAll(externalForce_, i)
+    {
+        f[i] = toVec3(externalForce_[i]);
+    }
+    mkDir(dir);
+    try
+    {
+        solid_->saveState(dir/"state");
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalErrorInFunction
+            << "Cannot save the immersed solid's state in " << dir << ": "
+            << err.what() << exit(FatalError);
+    }
+    // the velocity the fluid saw (the mean over the last step, advance())
+    {
+        OFstream os(dir/"velocity");
+        os.precision(17);
+        os << velocities_;
+        if (!os.good())
+        {
+            FatalErrorInFunction
+                << "Cannot write " << os.name() << exit(FatalError);
+        }
+    }
+    try
+    {
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalErrorInFunction
+            << "Cannot save the immersed solid's state in " << dir << ": "
+            << err.what() << exit(FatalError);
+    }
+}
+
+
+bool Foam::immersedSolids::deformable::readState(const fileName& dir)
+{
+    const fileName file(dir/"state");
+    if (!isFile(file))
+    {
+        return false;
+    }
+    try
+    {
+        solid_->loadState(file);
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalErrorInFunction
+            << "Cannot restart the immersed solid from " << file << ": "
+            << err.what() << nl
+            << "    The file must come from the same solid mesh, material"
+            << " and formulation (constant/solidProperties); remove the"
+            << " time directory or start from an earlier one"
+            << exit(FatalError);
+    }
+    time_ = solid_->time();
+    const std::vector<smoothedSolid::Vec3>& f = solid_->externalForce();
+    externalForce_.setSize(points_.size());
+    forAll(externalForce_, i)
+    {
+        externalForce_[i] = vector(f[i](0), f[i](1), f[i](2));
+    }
+    fromSolid();
+    const fileName vFile(dir/"velocity");
+    if (isFile(vFile))
+    {
+        IFstream is(vFile);
+        vectorField v(is);
+        if (v.size() != velocities_.size())
+        {
+            FatalIOErrorInFunction(is)
+                << vFile << " has " << v.size() << " velocities for "
+                << velocities_.size() << " solid nodes: it belongs to"
+                << " another solid mesh" << exit(FatalIOError);
+        }
+        velocities_ = v;
+    }
+    return true;
 }
 
 

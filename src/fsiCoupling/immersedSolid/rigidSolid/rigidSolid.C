@@ -67,13 +67,13 @@ Foam::immersedSolids::rigid::rigid
 )
 :
     immersedSolid(runTime, dict),
-    t0_(runTime.value()),
+    t0_(dict.getOrDefault<scalar>("meshTime", 0)),
     velocity_(),
     origin_(Zero),
     axis_(0, 0, 1),
     omega_()
 {
-    checkKeywords(dict_, wordList({"type", "mesh", "motion"}));
+    checkKeywords(dict_, wordList({"type", "mesh", "meshTime", "motion"}));
 
     if (dict_.found("motion"))
     {
@@ -99,7 +99,7 @@ Foam::immersedSolids::rigid::rigid
         }
     }
 
-    moveTo(t0_);
+    moveTo(runTime.value());
 }
 
 
