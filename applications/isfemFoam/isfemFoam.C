@@ -51,10 +51,14 @@ int main(int argc, char *argv[])
         ++runTime;
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
-        fsi.advanceSolid();     // (3.1) solid to t^{n+1}, FSI force of t^n
-        fsi.searchPairs();      // (3.2) FSI pairs, covered cells
-        fluid.solve();          // (3.3) projection, u = u_s where covered
-        fsi.updateForce();      // (3.4) FSI force for the next solid step
+        // the coupling iterates the step until the force handed to the
+        // solid is the one the fluid gives back (immersedForcing.H)
+        do
+        {
+            fsi.advanceSolid();     // (3.1) solid to t^{n+1}
+            fsi.searchPairs();      // (3.2) FSI pairs, covered cells
+            fluid.solve();          // (3.3) projection, u = u_s covered
+        } while (!fsi.updateForce());   // (3.4) FSI force on the solid
 
         runTime.write();
         fsi.write();            // solid state (restart) and VTU

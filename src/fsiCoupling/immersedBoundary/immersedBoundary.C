@@ -893,50 +893,99 @@ void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const surfaceVectorField& Sf = mesh_.Sf();
+    const surfaceScalarField& magSf = mesh_.magSf();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const label nInternal = mesh_.nInternalFaces();
+
+    // The solid flux u_s . S_f of an immersed face (the mean of the two
+    // covered cells' u_s between two of them)
+    auto solidVelocity = [&](const label facei)
+    {
+        if (facei < nInternal)
+        {
+            const label io = coveredIndex_[own[facei]];
+            const label in = coveredIndex_[nei[facei]];
+            if (io >= 0 && in >= 0)
+            {
+                return vector(0.5*(coveredVelocity_[io] + coveredVelocity_[in]));
+            }
+            return vector(coveredVelocity_[io >= 0 ? io : in]);
+        }
+        const label io = coveredIndex_[mesh_.faceOwner()[facei]];
+        const bool nc = nbrCovered(facei);
+        const vector& un = nbrVelocity_[facei - nInternal];
+        if (io >= 0 && nc)
+        {
+            return vector(0.5*(coveredVelocity_[io] + un));
+        }
+        return vector(io >= 0 ? coveredVelocity_[io] : un);
+    };
+
+    // The solid's volume change seen by the fluid: the net solid flux out
+    // of the covered cells through their faces to fluid cells, Q over
+    // their area A (all ranks: a processor face counted on its covered
+    // side). The fluid takes the solid as volume-preserving: each such
+    // face's solid flux loses Q |S_f|/A (outward). A compressible solid's
+    // squeeze (nu < 0.5) would otherwise be a mass source that the
+    // incompressible fluid can only absorb by accelerating the whole
+    // column to the outlet within one step: a pressure that grows as
+    // 1/dt^2 and squeezes the solid further (the coupling diverged on
+    // the Turek-Hron flag, nu_s = 0.4, whatever its density).
+    scalar Q = 0;
+    scalar A = 0;
+    for (const label facei : internalFaces_)
+    {
+        const bool co = covered(own[facei]);
+        if (co != covered(nei[facei]))
+        {
+            const scalar phis = solidVelocity(facei) & Sf[facei];
+            Q += co ? phis : -phis;
+            A += magSf[facei];
+        }
+    }
+    for (const label facei : boundaryFaces_)
+    {
+        const label patchi = pbm.whichPatch(facei);
+        const label i = facei - pbm[patchi].start();
+        if (covered(mesh_.faceOwner()[facei]) && !nbrCovered(facei))
+        {
+            Q += solidVelocity(facei) & Sf.boundaryField()[patchi][i];
+            A += magSf.boundaryField()[patchi][i];
+        }
+    }
+    reduce(Q, sumOp<scalar>());
+    reduce(A, sumOp<scalar>());
+    const scalar q = A > VSMALL ? Q/A : 0;
 
     scalarField& phiI = phi.primitiveFieldRef();
     for (const label facei : internalFaces_)
     {
-        const label io = coveredIndex_[own[facei]];
-        const label in = coveredIndex_[nei[facei]];
-        vector us(Zero);
-        if (io >= 0 && in >= 0)
+        phiI[facei] = solidVelocity(facei) & Sf[facei];
+        const bool co = covered(own[facei]);
+        if (co != covered(nei[facei]))
         {
-            us = 0.5*(coveredVelocity_[io] + coveredVelocity_[in]);
-        }
-        else
-        {
-            us = coveredVelocity_[io >= 0 ? io : in];
-        }
-        phiI[facei] = us & Sf[facei];
-        if (ramp_ && (io < 0 || in < 0))
-        {
-            phiI[facei] = rampedFlux(facei, phiI[facei]);
+            phiI[facei] -= (co ? q : -q)*magSf[facei];
+            if (ramp_)
+            {
+                phiI[facei] = rampedFlux(facei, phiI[facei]);
+            }
         }
     }
 
-    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     auto& phiB = phi.boundaryFieldRef();
     for (const label facei : boundaryFaces_)
     {
         const label patchi = pbm.whichPatch(facei);
         const label i = facei - pbm[patchi].start();
-        const label io = coveredIndex_[mesh_.faceOwner()[facei]];
-        const bool nc = nbrCovered(facei);
-        const vector& un = nbrVelocity_[facei - mesh_.nInternalFaces()];
-        vector us(Zero);
-        if (io >= 0 && nc)
+        phiB[patchi][i] = solidVelocity(facei) & Sf.boundaryField()[patchi][i];
+        const bool co = covered(mesh_.faceOwner()[facei]);
+        if (co != nbrCovered(facei))
         {
-            us = 0.5*(coveredVelocity_[io] + un);
-        }
-        else
-        {
-            us = io >= 0 ? coveredVelocity_[io] : un;
-        }
-        phiB[patchi][i] = us & Sf.boundaryField()[patchi][i];
-        if (ramp_ && (io < 0 || !nc))
-        {
-            phiB[patchi][i] = rampedFlux(facei, phiB[patchi][i]);
+            phiB[patchi][i] -= (co ? q : -q)*magSf.boundaryField()[patchi][i];
+            if (ramp_)
+            {
+                phiB[patchi][i] = rampedFlux(facei, phiB[patchi][i]);
+            }
         }
     }
 }

@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "immersedForcing.H"
+#include "scalarMatrices.H"
 #include "fvMatrices.H"
 #include "singlePhaseTransportModel.H"
 #include "clockValue.H"
@@ -34,22 +35,43 @@ void Foam::fv::immersedForcing::update()
 void Foam::fv::immersedForcing::advanceSolid()
 {
     const Time& runTime = mesh_.time();
-    if (advanceIndex_ == runTime.timeIndex())
+    immersedSolid& solid = coupling_.solid();
+    if (advanceIndex_ == runTime.timeIndex() && !redo_)
     {
         return;
     }
-    endOfStep();
-    writeDiagnostics();
+    if (redo_)
+    {
+        // the next coupling iteration of this step: from the step's start
+        // with the relaxed force
+        redo_ = false;
+        ++iteration_;
+        solid.restoreState();
+        solid.externalForce() = guess_;
+    }
+    else
+    {
+        endOfStep();
+        writeDiagnostics();
+        advanceIndex_ = runTime.timeIndex();
+        stepIndex_ = runTime.timeIndex();
+        searchTime0_ = coupling_.searchTime();
+        transferTime0_ = coupling_.transferTime();
+        forceTime_ = 0;
+        wallTime_ = 0;
+        advanceTime_ = 0;
+        iteration_ = 0;
+        residual_ = 0;
+        velocities0_ = solid.velocities();
+        if (maxIterations_ > 1)
+        {
+            solid.storeState();
+            guess_ = solid.externalForce();
+        }
+    }
     passes_ = 0;
-    advanceIndex_ = runTime.timeIndex();
-    stepIndex_ = runTime.timeIndex();
-    searchTime0_ = coupling_.searchTime();
-    transferTime0_ = coupling_.transferTime();
-    forceTime_ = 0;
-    wallTime_ = 0;
+    searchIndex_ = -1;
 
-    immersedSolid& solid = coupling_.solid();
-    velocities0_ = solid.velocities();
     const scalar dt = runTime.value() - solid.time();
     stepDeltaT_ = dt;
     const clockValue start(true);
@@ -57,7 +79,7 @@ void Foam::fv::immersedForcing::advanceSolid()
     {
         solid.advance(dt);
     }
-    advanceTime_ = double(start.elapsed());
+    advanceTime_ += double(start.elapsed());
     if (debug)
     {
         const vectorField& v = solid.velocities();
@@ -222,6 +244,7 @@ Foam::scalar Foam::fv::immersedForcing::maxDeltaT(const scalar maxCo) const
 void Foam::fv::immersedForcing::write()
 {
     const Time& runTime = mesh_.time();
+    probes_.write(coupling_.solid(), runTime);
     if (!runTime.writeTime())
     {
         return;
@@ -358,10 +381,13 @@ void Foam::fv::immersedForcing::writeDiagnostics()
                 << "# walk = mean neighbour steps per solid node;"
                 << " fallback = octree searches" << nl
                 << "# times [s]: solid advance, pair search (F-S, S-F and"
-                << " the wall location), transfers, force and source" << nl
+                << " the wall location), transfers, force and source (all"
+                << " coupling iterations)" << nl
+                << "# iterations: coupling iterations of the step;"
+                << " residual: the last one's force residual" << nl
                 << "# time Fx Fy Fz Sx Sy Sz imbalance slip coveredCells"
                 << " immersedFaces walk fallback tAdvance tSearch"
-                << " tTransfer tForce" << endl;
+                << " tTransfer tForce iterations residual" << endl;
         }
         OFstream& os = diagnostics_();
         os.precision(8);
@@ -374,7 +400,8 @@ void Foam::fv::immersedForcing::writeDiagnostics()
             << advanceTime_ << ' '
             << coupling_.searchTime() - searchTime0_ + wallTime_ << ' '
             << coupling_.transferTime() - transferTime0_ << ' '
-            << forceTime_ << endl;
+            << forceTime_ << ' ' << iteration_ + 1 << ' ' << residual_
+            << endl;
     }
     stepIndex_ = -1;
 }
@@ -413,6 +440,20 @@ Foam::fv::immersedForcing::immersedForcing
     velocities0_(),
     stepDeltaT_(0),
     addedMassLength_(0),
+    maxIterations_(1),
+    tolerance_(1e-3),
+    relaxation_(0.5),
+    iteration_(0),
+    redo_(false),
+    residual_(0),
+    omega_(0),
+    guess_(),
+    previousResidual_(),
+    previousOutput_(),
+    reuse_(4),
+    Vcols_(),
+    Wcols_(),
+    stepCols_(),
     probes_(coupling_.solid()),
     rhoFluid_(0),
     boundary_(mesh),
@@ -599,6 +640,141 @@ void Foam::fv::immersedForcing::correct(volVectorField&)
 }
 
 
+bool Foam::fv::immersedForcing::updateForce()
+{
+    endOfStep();
+    if (maxIterations_ <= 1)
+    {
+        return true;
+    }
+
+    // Residual of the fixed point G = F(G) (the force handed to the solid
+    // against the one the fluid gave back), over the replicated solid
+    immersedSolid& solid = coupling_.solid();
+    const vectorField& F = solid.externalForce();
+    const vectorField r(F - guess_);
+    const scalar magF = Foam::sqrt(sum(magSqr(F)));
+    residual_ = Foam::sqrt(sum(magSqr(r)))/max(magF, VSMALL);
+    Info<< type() << ' ' << name_ << ": coupling iteration " << iteration_ + 1
+        << ", force residual " << residual_ << endl;
+    if (residual_ < tolerance_ || iteration_ + 1 >= maxIterations_)
+    {
+        if (residual_ >= tolerance_)
+        {
+            WarningInFunction
+                << "The coupling did not converge in " << maxIterations_
+                << " iterations at t = " << mesh_.time().value()
+                << " (force residual " << residual_ << ", tolerance "
+                << tolerance_ << ")" << endl;
+        }
+        return true;
+    }
+
+    // Interface quasi-Newton with an inverse Jacobian from a least-squares
+    // model (IQN-ILS, Degroote, Bathe & Vierendeels 2009, Comput Struct
+    // 87:793): x = guess_, xt = F(x) the force the fluid gives back, r =
+    // xt - x. With the differences of the iterations kept so far, V =
+    // [Delta r], W = [Delta xt], alpha = argmin |V alpha + r| and
+    // x_{k+1} = xt_k + W alpha (their Eq. 14); the first iteration of the
+    // first step relaxes, x_1 = x_0 + omega r. The columns of the last
+    // couplingReuse steps are kept (their Sect. 3.3).
+    if (iteration_ > 0)
+    {
+        Vcols_.append(new vectorField(r - previousResidual_));
+        Wcols_.append(new vectorField(F - previousOutput_));
+        stepCols_.append(mesh_.time().timeIndex());
+    }
+    previousResidual_ = r;
+    previousOutput_ = F;
+
+    // drop the columns of steps older than couplingReuse
+    {
+        const label oldest = mesh_.time().timeIndex() - reuse_;
+        label first = 0;
+        while (first < stepCols_.size() && stepCols_[first] < oldest)
+        {
+            ++first;
+        }
+        if (first > 0)
+        {
+            PtrList<vectorField> V(Vcols_.size() - first);
+            PtrList<vectorField> W(Wcols_.size() - first);
+            DynamicList<label> st(stepCols_.size() - first);
+            for (label j = first; j < Vcols_.size(); ++j)
+            {
+                V.set(j - first, Vcols_.set(j, nullptr));
+                W.set(j - first, Wcols_.set(j, nullptr));
+                st.append(stepCols_[j]);
+            }
+            Vcols_.transfer(V);
+            Wcols_.transfer(W);
+            stepCols_.transfer(st);
+        }
+    }
+
+    const label m = Vcols_.size();
+    if (m == 0)
+    {
+        omega_ = relaxation_;
+        guess_ += omega_*r;
+    }
+    else
+    {
+        // normal equations of the least-squares problem, newest columns
+        // first; a column (nearly) dependent on the newer ones is left out
+        // (the filtering of Haelterman et al. 2016, by its Gram-Schmidt
+        // remainder)
+        List<label> use;
+        List<vectorField> Q;
+        for (label j = m - 1; j >= 0; --j)
+        {
+            vectorField q(Vcols_[j]);
+            const scalar norm0 = Foam::sqrt(sum(magSqr(q)));
+            for (const vectorField& qi : Q)
+            {
+                q -= (sum(qi & q))*qi;
+            }
+            const scalar norm = Foam::sqrt(sum(magSqr(q)));
+            if (norm > 1e-8*norm0 && norm0 > VSMALL)
+            {
+                Q.append(vectorField(q/norm));
+                use.append(j);
+            }
+        }
+        // alpha from the QR factors: V_use = Q R, R alpha = -Q^T r
+        const label k = use.size();
+        scalarSquareMatrix R(k, Zero);
+        scalarField rhs(k, Zero);
+        for (label a = 0; a < k; ++a)
+        {
+            rhs[a] = -sum(Q[a] & r);
+            for (label b = a; b < k; ++b)
+            {
+                R(a, b) = sum(Q[a] & Vcols_[use[b]]);
+            }
+        }
+        scalarField alpha(k, Zero);
+        for (label a = k - 1; a >= 0; --a)
+        {
+            scalar v = rhs[a];
+            for (label b = a + 1; b < k; ++b)
+            {
+                v -= R(a, b)*alpha[b];
+            }
+            alpha[a] = v/R(a, a);
+        }
+        guess_ = F;
+        for (label a = 0; a < k; ++a)
+        {
+            guess_ += alpha[a]*Wcols_[use[a]];
+        }
+        omega_ = k;
+    }
+    redo_ = true;
+    return false;
+}
+
+
 void Foam::fv::immersedForcing::endOfStep()
 {
     if (!stepSolved_)
@@ -655,6 +831,18 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         }
         ghostWall_ = (wall == "ghost");
         readAddedMass(coeffs_);
+        maxIterations_ = coeffs_.getOrDefault<label>("couplingIterations", 1);
+        tolerance_ = coeffs_.getOrDefault<scalar>("couplingTolerance", 1e-3);
+        relaxation_ = coeffs_.getOrDefault<scalar>("couplingRelaxation", 0.5);
+        reuse_ = coeffs_.getOrDefault<label>("couplingReuse", 4);
+        if (maxIterations_ < 1 || tolerance_ <= 0 || relaxation_ <= 0)
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "couplingIterations " << maxIterations_
+                << ", couplingTolerance " << tolerance_
+                << " and couplingRelaxation " << relaxation_
+                << " must be positive" << exit(FatalIOError);
+        }
         boundary_.setCoverRamp(coeffs_.getOrDefault<bool>("coverRamp", true));
         if (rhoFluid_ <= 0)
         {

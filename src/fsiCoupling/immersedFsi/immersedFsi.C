@@ -68,12 +68,14 @@ void Foam::immersedFsi::searchPairs() const
 }
 
 
-void Foam::immersedFsi::updateForce() const
+bool Foam::immersedFsi::updateForce() const
 {
+    bool converged = true;
     for (fv::immersedForcing* f : forcing_)
     {
-        f->endOfStep();
+        converged = f->updateForce() && converged;
     }
+    return converged;
 }
 
 

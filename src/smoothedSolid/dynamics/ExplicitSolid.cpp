@@ -665,6 +665,18 @@ void ExplicitSolid::saveState(const std::string& fileName) const
 {
     std::ofstream os(fileName, std::ios::binary);
     if (!os) throw Error("cannot write state file '" + fileName + "'");
+    saveState(os, fileName);
+}
+
+void ExplicitSolid::loadState(const std::string& fileName)
+{
+    std::ifstream is(fileName, std::ios::binary);
+    if (!is) throw Error("cannot open state file '" + fileName + "'");
+    loadState(is, fileName);
+}
+
+void ExplicitSolid::saveState(std::ostream& os, const std::string& fileName) const
+{
     os.write(kStateTag, sizeof kStateTag);
     put(os, kStateVersion);
     put(os, static_cast<std::int64_t>(mesh_->nNodes()));
@@ -691,10 +703,8 @@ void ExplicitSolid::saveState(const std::string& fileName) const
     if (!os) throw Error("error while writing state file '" + fileName + "'");
 }
 
-void ExplicitSolid::loadState(const std::string& fileName)
+void ExplicitSolid::loadState(std::istream& is, const std::string& fileName)
 {
-    std::ifstream is(fileName, std::ios::binary);
-    if (!is) throw Error("cannot open state file '" + fileName + "'");
     Reader r(is, fileName);
     char tag[sizeof kStateTag] = {};
     is.read(tag, sizeof tag);

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <iosfwd>
 #include <memory>
 #include <vector>
 
@@ -156,6 +157,10 @@ public:
     // file throws naming the file and the mismatch.
     void saveState(const std::string& fileName) const;
     void loadState(const std::string& fileName);
+    // The same on a stream (e.g. an in-memory snapshot for the sub-
+    // iterations of an implicit coupling); 'name' names it in errors
+    void saveState(std::ostream& os, const std::string& name) const;
+    void loadState(std::istream& is, const std::string& name);
 
 private:
     struct Constraint {

@@ -16,6 +16,8 @@
 #include "OFstream.H"
 #include "IFstream.H"
 
+#include <sstream>
+
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
 namespace Foam
@@ -198,7 +200,10 @@ Foam::immersedSolids::deformable::deformable
 )
 :
     immersedSolid(runTime, dict),
-    lastSubSteps_(0)
+    lastSubSteps_(0),
+    stored_(),
+    storedVelocities_(),
+    storedTime_(0)
 {
     checkKeywords
     (
@@ -469,6 +474,31 @@ void Foam::immersedSolids::deformable::setState
         << "A deformable immersed solid's configuration follows from its"
         << " dynamics; it cannot be set directly"
         << exit(FatalError);
+}
+
+
+void Foam::immersedSolids::deformable::storeState()
+{
+    std::ostringstream os(std::ios::binary);
+    solid_->saveState(os, "the solid's snapshot");
+    stored_ = os.str();
+    storedVelocities_ = velocities_;
+    storedTime_ = time_;
+}
+
+
+void Foam::immersedSolids::deformable::restoreState()
+{
+    if (stored_.empty())
+    {
+        FatalErrorInFunction
+            << "No stored state to go back to" << exit(FatalError);
+    }
+    std::istringstream is(stored_, std::ios::binary);
+    solid_->loadState(is, "the solid's snapshot");
+    time_ = storedTime_;
+    fromSolid();
+    velocities_ = storedVelocities_;
 }
 
 

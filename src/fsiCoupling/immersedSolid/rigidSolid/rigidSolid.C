@@ -68,6 +68,7 @@ Foam::immersedSolids::rigid::rigid
 :
     immersedSolid(runTime, dict),
     t0_(dict.getOrDefault<scalar>("meshTime", 0)),
+    storedTime_(runTime.value()),
     velocity_(),
     origin_(Zero),
     axis_(0, 0, 1),
