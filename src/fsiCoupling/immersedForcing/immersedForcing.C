@@ -86,7 +86,10 @@ void Foam::fv::immersedForcing::advanceSolid()
         label imax = 0;
         forAll(v, i)
         {
-            if (magSqr(v[i]) > magSqr(v[imax])) imax = i;
+            if (magSqr(v[i]) > magSqr(v[imax]))
+            {
+                imax = i;
+            }
         }
         Info<< "immersedForcing: solid max |v| " << (v.size() ? mag(v[imax]) : 0)
             << " at node " << imax << " X "
@@ -446,7 +449,6 @@ Foam::fv::immersedForcing::immersedForcing
     iteration_(0),
     redo_(false),
     residual_(0),
-    omega_(0),
     guess_(),
     previousResidual_(),
     previousOutput_(),
@@ -715,8 +717,7 @@ bool Foam::fv::immersedForcing::updateForce()
     const label m = Vcols_.size();
     if (m == 0)
     {
-        omega_ = relaxation_;
-        guess_ += omega_*r;
+        guess_ += relaxation_*r;
     }
     else
     {
@@ -768,7 +769,6 @@ bool Foam::fv::immersedForcing::updateForce()
         {
             guess_ += alpha[a]*Wcols_[use[a]];
         }
-        omega_ = k;
     }
     redo_ = true;
     return false;
