@@ -63,6 +63,10 @@ Foam::immersedBoundary::immersedBoundary
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
     internalFaces_(),
     boundaryFaces_(),
+    inertial_(false),
+    inertia_(),
+    immersedRAUf_(),
+    solidDivergence_(),
     wallFraction_()
 {}
 
@@ -93,6 +97,7 @@ void Foam::immersedBoundary::update
     }
     coveredCells_ = coveredCells;
     coveredVelocity_ = coveredVelocity;
+    inertial_ = false;      // setInertia() for this update
     forAll(coveredCells_, i)
     {
         coveredIndex_[coveredCells_[i]] = i;
@@ -1252,6 +1257,23 @@ void Foam::immersedBoundary::constrainPressure
     // fixed pressure: pure Neumann blocks, singular (a single enclosed
     // cell is a zero row); GAMG diverged on them. One cell of each gets a
     // reference to its current value, as fvMatrix::setReference does
+    if (inertial_)
+    {
+        // semi-implicit coupling: the covered cells are in the equation
+        // with their inertia, no block is enclosed. Their rows keep the
+        // pressure flux of p0 only: the solid's own volume change (a
+        // compressible solid, or the interpolation of its velocity to the
+        // cells) is not the fluid's to cancel, so the pressure increment
+        // moves the solid without compressing it, and continuity holds in
+        // the fluid cells (the solid's net volume change stays zero by
+        // constrainFlux)
+        scalarField& source = pEqn.source();
+        forAll(coveredCells_, i)
+        {
+            source[coveredCells_[i]] -= solidDivergence_[i];
+        }
+        return;
+    }
     scalarField& diag = pEqn.diag();
     scalarField& source = pEqn.source();
     const scalar D = 1e-6*gAverage(diag);
@@ -1567,6 +1589,12 @@ Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::correctPressure
             ++count[io];
         }
     }
+    if (inertial_)
+    {
+        // the covered cells' pressure is the solution (the next step's
+        // increment starts from it)
+        return tgrad;
+    }
     scalarField& pI = p.primitiveFieldRef();
     forAll(coveredCells_, i)
     {
@@ -1586,9 +1614,11 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
     const volVectorField& U,
     const volScalarField& nu,
     const scalar rhoFluid,
-    vector& coveredGradP
+    vector& coveredGradP,
+    const bool withPressure
 ) const
 {
+    const scalar pw1 = withPressure ? 1 : 0;
     tmp<vectorField> tt(new vectorField(coveredCells_.size(), Zero));
     vectorField& t = tt.ref();
     coveredGradP = Zero;
@@ -1632,7 +1662,7 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
         t[io >= 0 ? io : in] +=
             rhoFluid
            *(
-              - pw*S
+              - pw1*pw*S
               + nu[F]*mag(S)*delta[facei]*(U[F] - U[C])
             );
         coveredGradP += internalWall[facej]*S;
@@ -1659,7 +1689,7 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
         t[io] +=
             rhoFluid
            *(
-              - boundaryWall[j]*S
+              - pw1*boundaryWall[j]*S
               + nuNbr[b]*mag(S)*delta.boundaryField()[patchi][i]
                *(Unbr[b] - U[o])
             );

@@ -8,6 +8,7 @@
 #include "singlePhaseTransportModel.H"
 #include "clockValue.H"
 #include "OSspecific.H"
+#include "IFstream.H"
 #include "addToRunTimeSelectionTable.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
@@ -135,6 +136,11 @@ void Foam::fv::immersedForcing::searchPairs()
     }
     wallTime_ = double(wallStart.elapsed());
 
+    if (semiImplicit_)
+    {
+        setInertia();
+    }
+
     scalarField& chi = coverage_.primitiveFieldRef();
     chi = 0;
     UIndirectList<scalar>(chi, boundary_.coveredCells()) = 1.0;
@@ -157,6 +163,18 @@ void Foam::fv::immersedForcing::readAddedMass(const dictionary& dict)
     addedMassLength_ = 0;
     if (!solid.isDeformable())
     {
+        return;
+    }
+    if (semiImplicit_)
+    {
+        if (dict.getOrDefault<scalar>("addedMassLength", 0) != 0)
+        {
+            FatalIOErrorInFunction(dict)
+                << "addedMassLength stabilises the explicit coupling; with"
+                << " coupling semiImplicit the pressure equation carries the"
+                << " solid's inertia. Remove the entry, or set coupling"
+                << " explicit" << exit(FatalIOError);
+        }
         return;
     }
     const boundBox bb(solid.points0(), false);
@@ -255,6 +273,14 @@ void Foam::fv::immersedForcing::write()
     const fileName dir(runTime.timePath()/"uniform"/"immersedSolid");
     coupling_.solid().writeState(dir);
     boundary_.writeRamps(dir/"coverRamps");
+    if (semiImplicit_)
+    {
+        // every rank its own copy, as the solid's state
+        OFstream os(dir/"addedMass");
+        os.precision(17);
+        os << draggedMass_ << nl;
+
+    }
     coupling_.solid().write();
 }
 
@@ -294,36 +320,41 @@ void Foam::fv::immersedForcing::fluidForce
 )
 {
     immersedSolid& solid = coupling_.solid();
-    const List<solidTet>& elements = solid.elements();
-    const immersedPairs& pairs = coupling_.pairs();
 
     const singlePhaseTransportModel& transport =
         mesh_.lookupObject<singlePhaseTransportModel>("transportProperties");
     const tmp<volScalarField> tnu(transport.nu());
 
     // Traction on the staircase surface of the covered cells (pressure
-    // and viscous, Eqs. 44/48 boundary terms), per covered cell
-    const vectorField t
+    // and viscous, Eqs. 44/48 boundary terms), per covered cell; with the
+    // semi-implicit coupling the pressure part is the force the pressure
+    // equation gave the covered cells (immersedBoundary::pressureForce)
+    vectorField t
     (
-        boundary_.traction(p, U, tnu(), rhoFluid_, coveredGradP_)
+        boundary_.traction
+        (
+            p, U, tnu(), rhoFluid_, coveredGradP_, !semiImplicit_
+        )
     );
-
-    // To the solid nodes by the covered cell's shape-function weights
-    // (transpose of Eq. 52: the total is kept), summed over the ranks
+    // To the solid nodes (held for the solid's next step)
     vectorField& f = solid.externalForce();
-    f.setSize(solid.points().size());
-    f = Zero;
-    const labelUList& element = pairs.coveringElement();
-    const UList<immersedPairs::tetWeights>& w = pairs.weights();
-    forAll(t, i)
+    f = spread(t);
+    if (semiImplicit_)
     {
-        const solidTet& e = elements[element[i]];
-        for (label k = 0; k < 4; ++k)
-        {
-            f[e[k]] += w[i][k]*t[i];
-        }
+        // the solid's predictor felt the pressure force of p^n: correct
+        // it by the force of the increment p^{n+1} - p^n, with this
+        // step's covered cells and coefficients, as the pressure
+        // equation assumed (inertialProjection). (Correcting by what the
+        // predictor actually felt, with the last step's cells, diverged
+        // 20 times sooner on flap3D: the fluid's and the solid's views
+        // of the correction must agree.)
+        const vectorField Fp(boundary_.pressureForce(p, rhoFluid_));
+        correctSolid
+        (
+            spread(Fp - boundary_.pressureForce(p.oldTime(), rhoFluid_))
+        );
+        f += spread(Fp);
     }
-    reduce(f, sumOp<vectorField>());
     force_ = sum(f);
 
     // Added-mass stabilisation of the explicit coupling: the solid's next
@@ -338,6 +369,143 @@ void Foam::fv::immersedForcing::fluidForce
         }
     }
 }
+
+Foam::tmp<Foam::vectorField> Foam::fv::immersedForcing::spread
+(
+    const vectorField& cellForce
+) const
+{
+    const immersedSolid& solid = coupling_.solid();
+    const List<solidTet>& elements = solid.elements();
+    const immersedPairs& pairs = coupling_.pairs();
+    auto tf = tmp<vectorField>::New(solid.nPoints(), Zero);
+    vectorField& f = tf.ref();
+    const labelUList& element = pairs.coveringElement();
+    const UList<immersedPairs::tetWeights>& w = pairs.weights();
+    forAll(cellForce, i)
+    {
+        const solidTet& e = elements[element[i]];
+        for (label k = 0; k < 4; ++k)
+        {
+            f[e[k]] += w[i][k]*cellForce[i];
+        }
+    }
+    reduce(f, sumOp<vectorField>());
+    return tf;
+}
+
+
+void Foam::fv::immersedForcing::setInertia(const bool keepDraggedMass)
+{
+    // Each covered cell C hands its force to the nodes of its covering
+    // element by the weights w_Cn (sum_n w_Cn = 1); W_n = sum_C w_Cn (all
+    // ranks). In the staircase the whole cell moves with the solid: its
+    // fluid, V_C less the solid's share V_s,C = sum_n w_Cn V_n/W_n (V_n a
+    // node's share of the solid's volume), moves with the nodes it hands
+    // its force to: m_a,n = rho_f sum_C w_Cn (V_C - V_s,C)^+ (the solid
+    // divides by m_n + m_a,n). The cell's inertia in the pressure
+    // equation is what a force on it meets through the nodes: with the
+    // row sums of the mobility W M^-1 W^T (exact for a uniform push),
+    //     1/m_C = sum_n w_Cn W_n f_n/M_n,  M_n = m_n + m_a,n,
+    // f_n the fraction of the node's velocity components no constraint
+    // holds. A cell held still (f = 0) keeps 1e-3 of its free inertia:
+    // its force goes to held nodes only, and the pressure equation stays
+    // regular.
+    immersedSolid& solid = coupling_.solid();
+    const List<solidTet>& elements = solid.elements();
+    const immersedPairs& pairs = coupling_.pairs();
+    const labelUList& cells = pairs.coveredCells();
+    const labelUList& element = pairs.coveringElement();
+    const UList<immersedPairs::tetWeights>& w = pairs.weights();
+    const pointField& x = solid.points();
+    const label nNodes = solid.nPoints();
+    const scalarField& V = mesh_.V();
+
+    scalarField W(nNodes, Zero);
+    forAll(cells, i)
+    {
+        const solidTet& e = elements[element[i]];
+        for (label k = 0; k < 4; ++k)
+        {
+            W[e[k]] += w[i][k];
+        }
+    }
+    reduce(W, sumOp<scalarField>());
+
+    if (!keepDraggedMass)
+    {
+        // the nodes' shares of the solid's (current) volume
+        scalarField Vn(nNodes, Zero);
+        for (const solidTet& e : elements)
+        {
+            const scalar v = mag
+            (
+                (x[e[1]] - x[e[0]]) & ((x[e[2]] - x[e[0]])^(x[e[3]] - x[e[0]]))
+            )/6;
+            for (label k = 0; k < 4; ++k)
+            {
+                Vn[e[k]] += 0.25*v;
+            }
+        }
+        draggedMass_.setSize(nNodes);
+        draggedMass_ = Zero;
+        forAll(cells, i)
+        {
+            const solidTet& e = elements[element[i]];
+            scalar Vs = 0;
+            for (label k = 0; k < 4; ++k)
+            {
+                Vs += w[i][k]*Vn[e[k]]/max(W[e[k]], SMALL);
+            }
+            const scalar mf = rhoFluid_*max(V[cells[i]] - Vs, scalar(0));
+            for (label k = 0; k < 4; ++k)
+            {
+                draggedMass_[e[k]] += w[i][k]*mf;
+            }
+        }
+        reduce(draggedMass_, sumOp<scalarField>());
+    }
+    nodeMass_ = solid.nodeMass() + draggedMass_;
+    solid.setAddedMass(draggedMass_);
+
+    const vectorField free(solid.freeComponents());
+    scalarField inertia(cells.size(), Zero);
+    forAll(cells, i)
+    {
+        const solidTet& e = elements[element[i]];
+        scalar mob = 0;
+        scalar mobAll = 0;
+        for (label k = 0; k < 4; ++k)
+        {
+            const label n = e[k];
+            const scalar c = w[i][k]*W[n]/max(nodeMass_[n], VSMALL);
+            mob += c*cmptSum(free[n])/3;
+            mobAll += c;
+        }
+        inertia[i] = rhoFluid_*V[cells[i]]*max(mob, 1e-3*mobAll);
+    }
+    boundary_.setInertia(inertia);
+}
+
+
+void Foam::fv::immersedForcing::correctSolid(const vectorField& dF)
+{
+    // Fernandez, Gerbeau & Grandmont (2007): the pressure increment's
+    // force, over the mass that moves with each node, corrects the
+    // velocity of the step just taken (and the displacement by dt times
+    // it), as the projection corrects the covered cells' flux
+    immersedSolid& solid = coupling_.solid();
+    vectorField dv(dF.size(), Zero);
+    forAll(dv, i)
+    {
+        if (nodeMass_[i] > 0)
+        {
+            dv[i] = stepDeltaT_*dF[i]/nodeMass_[i];
+        }
+    }
+    solid.correctVelocity(dv, stepDeltaT_);
+}
+
 
 void Foam::fv::immersedForcing::writeDiagnostics()
 {
@@ -443,6 +611,9 @@ Foam::fv::immersedForcing::immersedForcing
     velocities0_(),
     stepDeltaT_(0),
     addedMassLength_(0),
+    semiImplicit_(false),
+    nodeMass_(),
+    draggedMass_(),
     maxIterations_(1),
     tolerance_(1e-3),
     relaxation_(0.5),
@@ -542,9 +713,41 @@ Foam::fv::immersedForcing::immersedForcing
     boundary_.readRamps(stateDir/"coverRamps");
 
     // the added mass of the first step
-    setAddedMass();
-    Info<< type() << ' ' << name_ << ": added mass " << sum(addedMass_)
-        << " kg (addedMassLength " << addedMassLength_ << " m)" << endl;
+    if (semiImplicit_)
+    {
+        // a restart's (the one the uninterrupted run would use), else
+        // from this configuration
+        const fileName massFile(stateDir/"addedMass");
+        const bool restart = isFile(massFile);
+        if (restart)
+        {
+            IFstream is(massFile);
+            is >> draggedMass_;
+            if (draggedMass_.size() != coupling_.solid().nPoints())
+            {
+                FatalIOErrorInFunction(is)
+                    << massFile << " has " << draggedMass_.size()
+                    << " values for " << coupling_.solid().nPoints()
+                    << " solid nodes: it belongs to another solid mesh."
+                    << " Remove it (the mass is then recomputed) or"
+                    << " restart from a time written with this mesh"
+                    << exit(FatalIOError);
+            }
+        }
+        setInertia(restart);
+
+        Info<< type() << ' ' << name_ << ": semi-implicit coupling, fluid"
+            << " moving with the solid " << sum(draggedMass_) << " kg"
+            << " (solid " << sum(coupling_.solid().nodeMass()()) << " kg)"
+            << endl;
+    }
+    else
+    {
+        setAddedMass();
+        Info<< type() << ' ' << name_ << ": explicit coupling, added mass "
+            << sum(addedMass_) << " kg (addedMassLength "
+            << addedMassLength_ << " m)" << endl;
+    }
 
     // the solid's output at the start time
     coupling_.solid().write(true);
@@ -787,7 +990,10 @@ void Foam::fv::immersedForcing::endOfStep()
     const volVectorField& U =
         mesh_.lookupObject<volVectorField>(fieldNames_.first());
     const clockValue start(true);
-    setAddedMass();
+    if (!semiImplicit_)
+    {
+        setAddedMass();
+    }
     fluidForce(p, U);
     source_ = fluidSource(U);
     forceTime_ += double(start.elapsed());
@@ -830,11 +1036,31 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 << exit(FatalIOError);
         }
         ghostWall_ = (wall == "ghost");
+        const bool deformable = coupling_.solid().isDeformable();
+        const word couplingType
+        (
+            coeffs_.getOrDefault<word>("coupling", "explicit")
+        );
+        if (couplingType != "semiImplicit" && couplingType != "explicit")
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "coupling " << couplingType << " is not semiImplicit or"
+                << " explicit" << exit(FatalIOError);
+        }
+        semiImplicit_ = deformable && couplingType == "semiImplicit";
         readAddedMass(coeffs_);
         maxIterations_ = coeffs_.getOrDefault<label>("couplingIterations", 1);
         tolerance_ = coeffs_.getOrDefault<scalar>("couplingTolerance", 1e-3);
         relaxation_ = coeffs_.getOrDefault<scalar>("couplingRelaxation", 0.5);
         reuse_ = coeffs_.getOrDefault<label>("couplingReuse", 4);
+        if (semiImplicit_ && maxIterations_ > 1)
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "couplingIterations " << maxIterations_ << " iterate the"
+                << " explicit coupling; with coupling semiImplicit (the"
+                << " default for a deformable solid) remove the entry or"
+                << " set coupling explicit" << exit(FatalIOError);
+        }
         if (maxIterations_ < 1 || tolerance_ <= 0 || relaxation_ <= 0)
         {
             FatalIOErrorInFunction(coeffs_)

@@ -500,6 +500,42 @@ void ExplicitSolid::setAddedMass(std::vector<double> m)
     addedMass_ = std::move(m);
 }
 
+std::vector<Vec3> ExplicitSolid::freeComponents() const
+{
+    std::vector<Vec3> free(mesh_->nNodes(), Vec3(1, 1, 1));
+    for (const Constraint& c : constraints_) {
+        for (int i : c.nodes) {
+            for (int k = 0; k < 3; ++k) {
+                if (c.components[k]) free[i][k] = 0;
+            }
+        }
+    }
+    return free;
+}
+
+void ExplicitSolid::correctVelocity(const std::vector<Vec3>& dv, double dt)
+{
+    const int nn = mesh_->nNodes();
+    if (static_cast<int>(dv.size()) != nn) {
+        throw Error("ExplicitSolid::correctVelocity: " + std::to_string(dv.size()) +
+                    " values for " + std::to_string(nn) + " nodes");
+    }
+    if (!(dt >= 0) || !std::isfinite(dt)) {
+        throw Error("ExplicitSolid::correctVelocity: the step must be non-negative and finite, not " +
+                    std::to_string(dt));
+    }
+    const std::vector<Vec3> free = freeComponents();
+    for (int i = 0; i < nn; ++i) {
+        if (!dv[i].allFinite()) {
+            throw Error("ExplicitSolid::correctVelocity: node " + std::to_string(i) +
+                        " has a non-finite velocity correction at t = " + std::to_string(t_));
+        }
+        const Vec3 d = dv[i].cwiseProduct(free[i]);
+        vHalf_[i] += d;
+        u_[i] += dt * d;
+    }
+}
+
 // Sub-steps of equal size within what is left of dt, re-chosen after each
 // one: the stable step follows the deformation and shrinks when contact
 // comes near

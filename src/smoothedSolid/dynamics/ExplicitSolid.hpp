@@ -70,6 +70,16 @@ public:
     // saved state: set it again before loadState().
     void setAddedMass(std::vector<double> m);
     const std::vector<double>& addedMass() const { return addedMass_; }
+    // Velocity correction at the end of the last step of length dt: dv is
+    // added to the velocity and dt*dv to the displacement of every node
+    // component that no constraint holds (an impulse over that step, as a
+    // projection's pressure correction: the semi-implicit coupling of the
+    // fluid's pressure with the solid's inertia). Components held by
+    // fix(), prescribeDisplacement() or prescribeVelocity() are left as
+    // the constraints set them. Throws on a wrong size or non-finite value.
+    void correctVelocity(const std::vector<Vec3>& dv, double dt);
+    // Per node, 1 for each component no constraint holds, else 0
+    std::vector<Vec3> freeComponents() const;
 
     // --- fibre directions (fibre-reinforced materials) --------------------
     // One direction per element in the reference configuration (normalised

@@ -205,3 +205,36 @@ TEST(Dynamics, AddedMassEqualsHeavierSolid)
 
     EXPECT_THROW(light.setAddedMass(std::vector<double>(3, 1.0)), Error);
 }
+
+// correctVelocity: free components move by dv (velocity) and dt*dv
+// (displacement); fixed ones stay; a wrong size throws
+TEST(Dynamics, CorrectVelocityKeepsConstraints)
+{
+    TetMesh mesh = TetMesh::box(4, 1, 1, [](const Vec3& x) { return x; });
+    ExplicitSolid s(std::move(mesh), std::make_shared<NeoHookean>(1e5, 1e6, 1000.0),
+                    {Formulation::Selective, 0.8, 0.0});
+    s.fix("xmin");
+    const std::vector<Vec3> free = s.freeComponents();
+    const int nn = s.mesh().nNodes();
+    std::vector<Vec3> dv(nn, Vec3(0.5, -1.0, 2.0));
+    const std::vector<Vec3> u0 = s.displacement(), v0 = s.velocity();
+    s.correctVelocity(dv, 0.1);
+    int nFixed = 0, nFree = 0;
+    for (int i = 0; i < nn; ++i) {
+        const bool fixed = s.mesh().coordinates()[i].x() < 1e-12;
+        EXPECT_EQ(free[i].sum(), fixed ? 0.0 : 3.0) << "node " << i;
+        const Vec3 du = s.displacement()[i] - u0[i], dvi = s.velocity()[i] - v0[i];
+        if (fixed) {
+            ++nFixed;
+            EXPECT_EQ(du.norm(), 0.0);
+            EXPECT_EQ(dvi.norm(), 0.0);
+        } else {
+            ++nFree;
+            EXPECT_NEAR((du - 0.1 * dv[i]).norm(), 0.0, 1e-15);
+            EXPECT_NEAR((dvi - dv[i]).norm(), 0.0, 1e-15);
+        }
+    }
+    EXPECT_GT(nFixed, 0);
+    EXPECT_GT(nFree, 0);
+    EXPECT_THROW(s.correctVelocity(std::vector<Vec3>(3), 0.1), Error);
+}

@@ -515,6 +515,47 @@ Foam::immersedSolids::deformable::lumpedMass() const
 }
 
 
+Foam::tmp<Foam::vectorField>
+Foam::immersedSolids::deformable::freeComponents() const
+{
+    const std::vector<smoothedSolid::Vec3> f = solid_->freeComponents();
+    auto tfree = tmp<vectorField>::New(label(f.size()));
+    forAll(tfree(), i)
+    {
+        tfree.ref()[i] = vector(f[i](0), f[i](1), f[i](2));
+    }
+    return tfree;
+}
+
+
+void Foam::immersedSolids::deformable::correctVelocity
+(
+    const vectorField& dv,
+    const scalar dt
+)
+{
+    std::vector<smoothedSolid::Vec3> d(dv.size());
+    forAll(dv, i)
+    {
+        d[i] = toVec3(dv[i]);
+    }
+    try
+    {
+        solid_->correctVelocity(d, dt);
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalErrorInFunction
+            << "The immersed solid failed at time " << time_ << ": "
+            << err.what() << exit(FatalError);
+    }
+    // the mean velocity over the step moves with the displacement
+    const pointField x0(points_ - dt*velocities_);
+    fromSolid();
+    velocities_ = dt > 0 ? vectorField((points_ - x0)/dt) : velocities_;
+}
+
+
 void Foam::immersedSolids::deformable::write(const bool force) const
 {
     if (vtu_ && (force || runTime_.writeTime()) && Pstream::master())
