@@ -40,16 +40,8 @@ from scipy.linalg import expm
 def growth(w, A, Ma, S, theta, correction, c=(1.5, -2.0, 0.5), dt=1.0):
     n = len(w)
     I = np.eye(n)
-    K = np.diag(w**2)
     Aeff = A + S
-    Minv = np.linalg.inv(I + Ma)
-    L = np.zeros((3*n, 3*n))
-    L[:n, n:2*n] = I
-    L[n:2*n, :n] = -Minv @ K
-    L[n:2*n, 2*n:] = Minv
-    E = expm(L*dt)
-    Px, Pv, Pg = E[:n, :n], E[:n, n:2*n], E[:n, 2*n:]
-    Qx, Qv, Qg = E[n:2*n, :n], E[n:2*n, n:2*n], E[n:2*n, 2*n:]
+    Px, Pv, Pg, Qx, Qv, Qg = solidPropagator(w, dt, I + Ma)
 
     # state: x, v, s_old, s_oldold, vbar_old
     T = np.zeros((5*n, 5*n))
@@ -82,15 +74,17 @@ def growth(w, A, Ma, S, theta, correction, c=(1.5, -2.0, 0.5), dt=1.0):
     return max(abs(np.linalg.eigvals(T)))
 
 
-def solidPropagator(w, dt=1.0):
-    """Exact step of unit-mass modes under a held load: x1 = Px x0 + Pv v0
-    + Pg g, v1 = Qx x0 + Qv v0 + Qg g"""
+def solidPropagator(w, dt=1.0, M=None):
+    """Exact step of the modes (dry frequencies w, unit mass, or mass
+    matrix M) under a held load g: x1 = Px x0 + Pv v0 + Pg g,
+    v1 = Qx x0 + Qv v0 + Qg g"""
     n = len(w)
     I = np.eye(n)
+    Minv = I if M is None else np.linalg.inv(M)
     L = np.zeros((3*n, 3*n))
     L[:n, n:2*n] = I
-    L[n:2*n, :n] = -np.diag(w**2)
-    L[n:2*n, 2*n:] = I
+    L[n:2*n, :n] = -Minv @ np.diag(w**2)
+    L[n:2*n, 2*n:] = Minv
     E = expm(L*dt)
     return [E[:n, :n], E[:n, n:2*n], E[:n, 2*n:],
             E[n:2*n, :n], E[n:2*n, n:2*n], E[n:2*n, 2*n:]]
@@ -141,31 +135,26 @@ def contractionSemiImplicit(w, A, S, theta, c0=1.5, dt=1.0):
 
 
 def randomOperators(mu, skew, trials, n, seed):
+    """Random dry frequencies w, added mass A (norm mu), a lumped guess of
+    its diagonal for the solid's added mass, and a skew part of relative
+    size skew"""
     rng = np.random.default_rng(seed)
     for _ in range(trials):
         w = np.exp(rng.uniform(np.log(0.05), np.log(30), n))
         Q = rng.standard_normal((n, n))
         A = Q @ Q.T
         A *= mu/np.linalg.norm(A, 2)
+        Ma = np.diag(np.diag(A))*np.exp(rng.uniform(-0.5, 0.5, n))
         Sk = rng.standard_normal((n, n))
         Sk = (Sk - Sk.T)*skew*np.linalg.norm(A)/np.linalg.norm(Sk)
-        yield w, A, Sk
+        yield w, A, Ma, Sk
 
 
-def worst(correction, theta, skew, mu=100, trials=60, n=5, seed=2):
-    rng = np.random.default_rng(seed)
-    g = 0
-    for _ in range(trials):
-        w = np.exp(rng.uniform(np.log(0.05), np.log(30), n))
-        Q = rng.standard_normal((n, n))
-        A = Q @ Q.T
-        A *= mu/np.linalg.norm(A, 2)
-        Ma = (0 if correction == 'none' else 1) \
-            * np.diag(np.diag(A))*np.exp(rng.uniform(-0.5, 0.5, n))
-        Sk = rng.standard_normal((n, n))
-        Sk = (Sk - Sk.T)*skew*np.linalg.norm(A)/np.linalg.norm(Sk)
-        g = max(g, growth(w, A, Ma, Sk, theta, correction))
-    return g
+def worst(correction, theta, skew):
+    return max(
+        growth(w, A, 0*Ma if correction == 'none' else Ma, Sk, theta,
+               correction)
+        for w, A, Ma, Sk in randomOperators(100, skew, 60, 5, 2))
 
 
 if __name__ == '__main__':
@@ -177,11 +166,11 @@ if __name__ == '__main__':
                 correction, theta,
                 worst(correction, theta, 0), worst(correction, theta, 0.05)))
     print('semi-implicit as built: growth per step %.4f, %.4f' % tuple(
-        max(growthSemiImplicit(w, A, Sk) for w, A, Sk in
+        max(growthSemiImplicit(w, A, Sk) for w, A, _, Sk in
             randomOperators(100, skew, 60, 5, 3)) for skew in (0, 0.05)))
     for theta in (0, 1):
         print('semi-implicit iterations, theta %g: contraction %.4f, %.4f'
               % ((theta,) + tuple(
                   max(contractionSemiImplicit(w, A, Sk, theta)
-                      for w, A, Sk in randomOperators(100, skew, 60, 5, 4))
+                      for w, A, _, Sk in randomOperators(100, skew, 60, 5, 4))
                   for skew in (0, 0.05))))

@@ -119,7 +119,7 @@ void Foam::fv::immersedForcing::searchPairs()
     // iteration and not in the next changes the fluid's equations, and
     // the fixed point the iterations look for stops being smooth (the
     // IQN-ILS residual stalled at 0.4-0.9 on the soft flap; with the
-    // pairs held it falls below 1e-3 in 6 to 8 iterations on the
+    // pairs held it falls below 1e-3 in 5 to 11 iterations on the
     // Turek-Hron flag).
     if (iteration_ == 0)
     {
