@@ -68,6 +68,7 @@ void Foam::fv::immersedForcing::advanceSolid()
         {
             solid.storeState();
             guess_ = solid.externalForce();
+            storeFluid();
         }
     }
     passes_ = 0;
@@ -188,10 +189,14 @@ void Foam::fv::immersedForcing::readAddedMass(const dictionary& dict)
         }
         return;
     }
+    // Iterated to convergence the solid must step alone: an added mass in
+    // its sub-steps is a lagged inertia there (couplingModel.py: 1.49 per
+    // step), so with couplingIterations the default is none
     const boundBox bb(solid.points0(), false);
     addedMassLength_ = dict.getOrDefault<scalar>
     (
-        "addedMassLength", 0.5*cmptMax(bb.span())
+        "addedMassLength",
+        maxIterations_ > 1 ? 0 : 0.5*cmptMax(bb.span())
     );
     if (addedMassLength_ < 0)
     {
@@ -867,8 +872,11 @@ bool Foam::fv::immersedForcing::updateForce()
     // Residual of the fixed point G = F(G) (the force handed to the solid
     // against the one the fluid gave back), over the replicated solid
     immersedSolid& solid = coupling_.solid();
-    const vectorField& F = solid.externalForce();
-    const vectorField r(F - guess_);
+    // (over the components the solid's constraints leave free: a force on
+    // a held component moves nothing)
+    const vectorField free(solid.freeComponents());
+    const vectorField F(cmptMultiply(free, solid.externalForce()));
+    const vectorField r(F - cmptMultiply(free, guess_));
     const scalar magF = Foam::sqrt(sum(magSqr(F)));
     residual_ = Foam::sqrt(sum(magSqr(r)))/max(magF, VSMALL);
     Info<< type() << ' ' << name_ << ": coupling iteration " << iteration_ + 1
@@ -985,7 +993,61 @@ bool Foam::fv::immersedForcing::updateForce()
         }
     }
     redo_ = true;
+    restoreFluid();
     return false;
+}
+
+
+void Foam::fv::immersedForcing::storeFluid()
+{
+    // The fluid's iterates at the step's start: every coupling iteration
+    // solves the step from them (restoreFluid), so that the force the
+    // fluid gives back is a function of the force handed to the solid
+    // alone. Carried over from the last iteration (the wall's ghost
+    // velocities and the convecting flux are taken from the current
+    // iterate), they made the fixed-point map one with memory: the same
+    // force handed to the solid twice gave back forces 1.2 % apart on the
+    // Turek-Hron flag, and IQN-ILS stalled at that level.
+    const word UName(coeffs_.getOrDefault<word>("U", "U"));
+    const word pName(coeffs_.getOrDefault<word>("p", "p"));
+    const word phiName(coeffs_.getOrDefault<word>("phi", "phi"));
+    U0_.reset
+    (
+        new volVectorField("U0", mesh_.lookupObject<volVectorField>(UName))
+    );
+    p0_.reset
+    (
+        new volScalarField("p0", mesh_.lookupObject<volScalarField>(pName))
+    );
+    phi0_.reset
+    (
+        new surfaceScalarField
+        (
+            "phi0",
+            mesh_.lookupObject<surfaceScalarField>(phiName)
+        )
+    );
+}
+
+
+void Foam::fv::immersedForcing::restoreFluid()
+{
+    if (!U0_.valid())
+    {
+        return;
+    }
+    mesh_.lookupObjectRef<volVectorField>
+    (
+        coeffs_.getOrDefault<word>("U", "U")
+    ) == U0_();
+    mesh_.lookupObjectRef<volScalarField>
+    (
+        coeffs_.getOrDefault<word>("p", "p")
+    ) == p0_();
+    mesh_.lookupObjectRef<surfaceScalarField>
+    (
+        coeffs_.getOrDefault<word>("phi", "phi")
+    ) == phi0_();
 }
 
 
@@ -1059,8 +1121,8 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 << " explicit" << exit(FatalIOError);
         }
         semiImplicit_ = deformable && couplingType == "semiImplicit";
-        readAddedMass(coeffs_);
         maxIterations_ = coeffs_.getOrDefault<label>("couplingIterations", 1);
+        readAddedMass(coeffs_);
         tolerance_ = coeffs_.getOrDefault<scalar>("couplingTolerance", 1e-3);
         relaxation_ = coeffs_.getOrDefault<scalar>("couplingRelaxation", 0.5);
         reuse_ = coeffs_.getOrDefault<label>("couplingReuse", 4);
