@@ -281,6 +281,7 @@ Foam::scalar Foam::fv::immersedForcing::maxDeltaT(const scalar maxCo) const
 void Foam::fv::immersedForcing::write()
 {
     const Time& runTime = mesh_.time();
+    // once per step, after its last coupling iteration
     probes_.write(coupling_.solid(), runTime);
     if (!runTime.writeTime())
     {
@@ -1084,8 +1085,6 @@ void Foam::fv::immersedForcing::endOfStep()
     reduce(n, sumOp<label>());
     reduce(maxUs, maxOp<scalar>());
     slip_ = Foam::sqrt(sum2/max(n, 1))/(maxUs > SMALL ? maxUs : 1);
-
-    probes_.write(coupling_.solid(), mesh_.time());
 
     Info<< type() << ' ' << name_ << ": force on the solid " << force_
         << ", momentum source on the fluid " << source_ << endl;

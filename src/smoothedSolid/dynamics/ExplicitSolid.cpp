@@ -46,6 +46,7 @@ ExplicitSolid::ExplicitSolid(TetMesh mesh, std::shared_ptr<const Material> mater
     if (!(options_.damping >= 0) || !std::isfinite(options_.damping)) {
         throw Error("ExplicitSolid: the damping coefficient must be non-negative");
     }
+    setStiffnessDamping(options_.stiffnessDamping);
     const int ne = mesh_->nElements();
     Fe_.resize(ne);
     Pbar_.resize(ne);
@@ -112,9 +113,27 @@ void ExplicitSolid::addFollowerPressure(const std::string& faceSet, ScalarFuncti
 
 // ---------------------------------------------------------------------------
 
+void ExplicitSolid::setStiffnessDamping(double beta)
+{
+    if (!(beta >= 0) || !std::isfinite(beta)) {
+        throw Error("ExplicitSolid: the stiffness damping coefficient must be non-negative "
+                    "and finite, not " + std::to_string(beta));
+    }
+    options_.stiffnessDamping = beta;
+}
+
+double ExplicitSolid::stepOfOmega2(double omega2) const
+{
+    const double omega = std::sqrt(omega2);
+    // damping ratio of the fastest mode; the central difference with the
+    // damping force at v^{n-1/2} is stable for omega dt <= 2 (sqrt(1 + z^2) - z)
+    const double z = 0.5 * options_.stiffnessDamping * omega;
+    return options_.safety * 2.0 / omega * (std::sqrt(1.0 + z * z) - z);
+}
+
 double ExplicitSolid::stableTimeStep() const
 {
-    const double dt = options_.safety * 2.0 / std::sqrt(omega2Max_);
+    const double dt = stepOfOmega2(omega2Max_);
     if (!contact_) return dt;
     // near contact as of the last search (each force evaluation makes one)
     if (!contact_->searched()) contact_->search(*mesh_, currentCoordinates());
@@ -129,7 +148,7 @@ double ExplicitSolid::stableTimeStep(const std::vector<Vec3>& u) const
     for (const auto& f : Fd_) F.push_back(&f);
     std::vector<double> omega2;
     const double w2 = bound_.evaluate(*material_, F, omega2);
-    return options_.safety * 2.0 / std::sqrt(w2);
+    return stepOfOmega2(w2);
 }
 
 void ExplicitSolid::refreshBound()
@@ -376,11 +395,20 @@ std::vector<Vec3> ExplicitSolid::currentCoordinates() const
     return x;
 }
 
-// f = f_ext - f_int at the current state (Eq. 42)
+// f = f_ext - f_int at the current state (Eq. 42); with stiffness damping
+// f_int(u + beta v^{n-1/2}) = f_int(u) + beta K v to first order
 void ExplicitSolid::accelerationForces(std::vector<Vec3>& f, double dt)
 {
-    f = internalForce(u_);
     const int nn = mesh_->nNodes();
+    const double beta = options_.stiffnessDamping;
+    if (beta > 0) {
+        uDamped_.resize(nn);
+#pragma omp parallel for schedule(static)
+        for (int i = 0; i < nn; ++i) uDamped_[i] = u_[i] + beta * vHalf_[i];
+        f = internalForce(uDamped_);
+    } else {
+        f = internalForce(u_);
+    }
 #pragma omp parallel for schedule(static)
     for (int i = 0; i < nn; ++i) f[i] = fext_[i] + mass_[i] * bodyForce_ - f[i];
 

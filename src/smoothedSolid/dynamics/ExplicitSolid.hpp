@@ -3,7 +3,8 @@
 // procedure; Belytschko, Liu & Moran, Nonlinear Finite Elements, Sect. 6.2),
 // lumped mass, internal force by the chosen smoothing formulation (Eq. 31),
 // external forces (Eq. 43) from the caller, follower pressure and body
-// force, optional mass-proportional damping for quasi-static runs.
+// force, optional mass-proportional damping for quasi-static runs and
+// stiffness-proportional damping of the mesh's fastest modes.
 #pragma once
 
 #include "contact/PenaltyContact.hpp"
@@ -25,6 +26,15 @@ struct SolidOptions {
     Formulation formulation = Formulation::Selective;
     double safety = 0.9;   // fraction of the stable step bound (dynamics/StableStep.hpp)
     double damping = 0.0;  // mass-proportional damping coefficient [1/s]
+    // Stiffness-proportional (Rayleigh) damping coefficient beta [s]: the
+    // internal force is taken at u + beta v, f_int(u) + beta K v to first
+    // order, a Kelvin-Voigt viscosity beta C : dE/dt. A mode of angular
+    // frequency omega gets the damping ratio beta omega / 2: a beta of the
+    // order of the stable step damps the element-scale modes (omega near
+    // 2/dt) strongly and the structural ones (omega orders of magnitude
+    // lower) by that ratio only. The stable step shrinks by
+    // sqrt(1 + z^2) - z, z = beta omega_max / 2 (see stableTimeStep()).
+    double stiffnessDamping = 0.0;
 };
 
 class ExplicitSolid {
@@ -39,6 +49,7 @@ public:
     const Material& material() const { return *material_; }
     const SolidOptions& options() const { return options_; }
     void setDamping(double c) { options_.damping = c; }
+    void setStiffnessDamping(double beta);
 
     // --- boundary conditions and loads -----------------------------------
     // Components: mask of x, y, z
@@ -113,7 +124,10 @@ public:
     // --- time stepping ----------------------------------------------------
     // Stable time step: safety * 2 / omega_max, omega_max from the bound of
     // dynamics/StableStep.hpp in the current configuration (re-evaluated
-    // during the run, see stableStepInterval()), times the contact step
+    // during the run, see stableStepInterval()), times sqrt(1 + z^2) - z
+    // with stiffness damping (z = beta omega_max / 2: the central
+    // difference with the damping force at v^{n-1/2}, Belytschko, Liu &
+    // Moran, Nonlinear Finite Elements, Sect. 6.2), times the contact step
     // fraction while contact is near
     double stableTimeStep() const;
     // The same bound, without contact, for any displacement u (evaluated now)
@@ -225,6 +239,9 @@ private:
     std::vector<Vec3> u_, vHalf_, fext_;
     mutable std::vector<Vec3> work_;
     std::vector<Vec3> x_;  // current coordinates, for the contact search
+    std::vector<Vec3> uDamped_;  // u + beta v (stiffness damping)
+    // the stable step of omega_max^2 with safety and stiffness damping
+    double stepOfOmega2(double omega2) const;
     std::vector<Constraint> constraints_;
     std::vector<Pressure> pressures_;
     std::unique_ptr<PenaltyContact> contact_;

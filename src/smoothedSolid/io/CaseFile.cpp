@@ -11,6 +11,7 @@ namespace {
 const std::set<std::string> kKeywords = {
     "mesh",   "box",      "hex",      "material", "formulation", "fix",           "planeStrain",
     "bodyForce", "pressure", "traction", "damping",  "safety",        "contact",
+    "stiffnessDamping",
     "endTime", "writeInterval", "output", "probe",   "probeInterval", "steadyTolerance",
     "fibres", "contactSurface"};
 }

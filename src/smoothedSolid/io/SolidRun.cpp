@@ -224,6 +224,12 @@ SolidRun::SolidRun(const std::string& caseFile) : case_(caseFile)
     }
     if (const auto* s = case_.find("safety", true)) opt.safety = case_.number(*s, 0);
     if (const auto* d = case_.find("damping", true)) opt.damping = case_.number(*d, 0);
+    if (const auto* b = case_.find("stiffnessDamping", true)) {
+        opt.stiffnessDamping = case_.number(*b, 0);
+        if (!(opt.stiffnessDamping >= 0)) {
+            case_.fail(*b, "stiffnessDamping must be a non-negative time [s]");
+        }
+    }
 
     if (case_.find("planeStrain", true)) {
         std::vector<int> all(mesh.nNodes());

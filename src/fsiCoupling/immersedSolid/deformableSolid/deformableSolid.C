@@ -210,7 +210,8 @@ Foam::immersedSolids::deformable::deformable
         dict_,
         {
             "type", "mesh", "formulation", "material", "fibres", "fixed",
-            "prescribedMotion", "safety", "damping", "bodyForce", "contact",
+            "prescribedMotion", "safety", "damping", "stiffnessDamping",
+            "bodyForce", "contact",
             "contactSurfaces", "output"
         }
     );
@@ -240,6 +241,18 @@ Foam::immersedSolids::deformable::deformable
     }
     opt.safety = dict_.getOrDefault<scalar>("safety", opt.safety);
     opt.damping = dict_.getOrDefault<scalar>("damping", opt.damping);
+    // stiffness-proportional damping beta [s] (smoothedSolid SolidOptions)
+    opt.stiffnessDamping =
+        dict_.getOrDefault<scalar>("stiffnessDamping", opt.stiffnessDamping);
+    if (!(opt.stiffnessDamping >= 0))
+    {
+        FatalIOErrorInFunction(dict_)
+            << "Entry 'stiffnessDamping' in " << dict_.name() << " is "
+            << opt.stiffnessDamping << ": give a non-negative time [s] (the"
+            << " damping ratio of a mode of angular frequency omega is"
+            << " stiffnessDamping omega/2; 0 switches it off)"
+            << exit(FatalIOError);
+    }
 
     const dictionary& matDict = dict_.subDict("material");
     std::shared_ptr<smoothedSolid::Material> material = makeMaterial(matDict);
