@@ -352,3 +352,33 @@ TEST(SolidRun, ProbeIntervalKeyword)
         }
     }
 }
+
+// stiffnessDamping in a case file reaches the solid's options; a negative
+// or non-numeric value is an error naming the file, line and keyword
+TEST(SolidRun, StiffnessDampingKeyword)
+{
+    auto write = [](const std::string& name, const std::string& extra) {
+        return writeCase(name, "box 2 2 2 0 0 0 1 1 1\n"
+                               "material neoHookean mu 80 K 4e5 rho 1\n"
+                               "fix xmin\n"
+                               "endTime 1\nwriteInterval 0.5\n" +
+                                   extra);
+    };
+    SolidRun byDefault(write("betaDefault", ""));
+    SolidRun given(write("betaGiven", "stiffnessDamping 2e-4\n"));
+    std::printf("stiffnessDamping: default %g s (0), given %g s (2e-4)\n",
+                byDefault.solid().options().stiffnessDamping,
+                given.solid().options().stiffnessDamping);
+    EXPECT_EQ(byDefault.solid().options().stiffnessDamping, 0.0);
+    EXPECT_DOUBLE_EQ(given.solid().options().stiffnessDamping, 2e-4);
+    for (const char* bad : {"stiffnessDamping -1e-4\n", "stiffnessDamping fast\n"}) {
+        try {
+            SolidRun run(write("betaBad", bad));
+            ADD_FAILURE() << "no exception for '" << bad << "'";
+        } catch (const Error& e) {
+            std::printf("error: %s\n", e.what());
+            EXPECT_NE(std::string(e.what()).find("betaBad.solid:6: 'stiffnessDamping'"),
+                      std::string::npos);
+        }
+    }
+}
