@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 namespace smoothedSolid {
 
@@ -126,9 +127,10 @@ double ExplicitSolid::stepOfOmega2(double omega2) const
 {
     const double omega = std::sqrt(omega2);
     // damping ratio of the fastest mode; the central difference with the
-    // damping force at v^{n-1/2} is stable for omega dt <= 2 (sqrt(1 + z^2) - z)
+    // damping force at v^{n-1/2} is stable for omega dt <= 2 (sqrt(1 + z^2) - z),
+    // written 2 / (z + sqrt(1 + z^2)) (no cancellation, no overflow)
     const double z = 0.5 * options_.stiffnessDamping * omega;
-    return options_.safety * 2.0 / omega * (std::sqrt(1.0 + z * z) - z);
+    return options_.safety * 2.0 / omega / (z + std::hypot(1.0, z));
 }
 
 double ExplicitSolid::stableTimeStep() const
@@ -576,7 +578,20 @@ int ExplicitSolid::advance(double dt)
     double left = dt;
     int n = 0;
     for (;;) {
-        const int k = static_cast<int>(std::ceil(left / stableTimeStep() - 1e-12));
+        // A stable step that collapses (a blown-up solid: omega_max grows
+        // without bound as elements flatten) stops here, with the state of
+        // the last sub-step kept, rather than in an integer overflow
+        const double h0 = stableTimeStep();
+        if (!(h0 * kMaxSubSteps > left)) {
+            std::ostringstream os;
+            os << "ExplicitSolid::advance: the stable step " << h0 << " s at t = " << t_
+               << " (step " << nSteps_ << ") would take more than " << kMaxSubSteps
+               << " sub-steps for the remaining " << left
+               << " s: the solid has blown up (elements nearly flat); reduce the time step "
+                  "or check the loads";
+            throw Error(os.str());
+        }
+        const int k = static_cast<int>(std::ceil(left / h0 - 1e-12));
         ++n;
         if (k <= 1) {
             step(left);

@@ -150,8 +150,11 @@ public:
     // smoothing domain inverts, naming time, step and node or element.
     void step(double dt);
     // Advance by dt (positive, finite) with as many stable sub-steps as
-    // needed (re-chosen after each sub-step); returns their number
+    // needed (re-chosen after each sub-step); returns their number. Throws
+    // when the remaining interval would take more than kMaxSubSteps
+    // sub-steps (a blown-up solid), the state of the last sub-step kept
     int advance(double dt);
+    static constexpr double kMaxSubSteps = 1e7;
 
     // --- state -------------------------------------------------------------
     double time() const { return t_; }

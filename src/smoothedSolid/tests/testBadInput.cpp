@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 
 using namespace smoothedSolid;
@@ -108,4 +109,20 @@ TEST(BadInput, CaseFileContactOptions)
     EXPECT_EQ(o.penaltyScale, 3.0);
     EXPECT_EQ(o.depthFraction, 1.5);
     EXPECT_EQ(o.facingCosine, 0.4);
+}
+
+// advance() over an interval that would take more than kMaxSubSteps stable
+// sub-steps (what a blown-up solid's collapsing stable step asks for) stops
+// with an error naming the stable step and the time, the state unchanged
+// (here a solid 1e16 times too stiff for the interval: about 1e9 sub-steps)
+TEST(BadInput, AdvanceRefusesACollapsedStableStep)
+{
+    TetMesh mesh = TetMesh::box(2, 2, 2, [](const Vec3& x) { return x; });
+    ExplicitSolid solid(std::move(mesh), std::make_shared<NeoHookean>(8e17, 4e18, 1.0));
+    solid.fix("xmin");
+    std::printf("stable step %.3e s, interval 1 s\n", solid.stableTimeStep());
+    expectError([&] { solid.advance(1.0); }, {"stable step", "t = 0", "blown up"});
+    EXPECT_EQ(solid.time(), 0.0);
+    // an interval it can do is done
+    EXPECT_GE(solid.advance(1e3 * solid.stableTimeStep()), 1000);
 }
