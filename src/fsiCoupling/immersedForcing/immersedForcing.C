@@ -290,6 +290,10 @@ void Foam::fv::immersedForcing::write()
     const fileName dir(runTime.timePath()/"uniform"/"immersedSolid");
     coupling_.solid().writeState(dir);
     boundary_.writeRamps(dir/"coverRamps");
+    if (maxIterations_ > 1)
+    {
+        writeColumns(dir/"couplingColumns");
+    }
     if (semiImplicit_)
     {
         // every rank its own copy, as the solid's state
@@ -728,6 +732,11 @@ Foam::fv::immersedForcing::immersedForcing
 
     // the running covering ramps of a restart
     boundary_.readRamps(stateDir/"coverRamps");
+    // and the coupling iterations' columns
+    if (maxIterations_ > 1)
+    {
+        readColumns(stateDir/"couplingColumns");
+    }
 
     // the added mass of the first step
     if (semiImplicit_)
@@ -996,6 +1005,51 @@ bool Foam::fv::immersedForcing::updateForce()
     redo_ = true;
     restoreFluid();
     return false;
+}
+
+
+void Foam::fv::immersedForcing::writeColumns(const fileName& file) const
+{
+    // every rank its own copy, as the solid's state
+    OFstream os(file);
+    os.precision(17);
+    os  << labelList(stepCols_) << nl;
+    forAll(Vcols_, j)
+    {
+        os  << Vcols_[j] << nl << Wcols_[j] << nl;
+    }
+}
+
+
+void Foam::fv::immersedForcing::readColumns(const fileName& file)
+{
+    if (!isFile(file))
+    {
+        return;
+    }
+    IFstream is(file);
+    const labelList steps(is);
+    Vcols_.setSize(steps.size());
+    Wcols_.setSize(steps.size());
+    const label n = coupling_.solid().nPoints();
+    forAll(steps, j)
+    {
+        Vcols_.set(j, new vectorField(is));
+        Wcols_.set(j, new vectorField(is));
+        if (Vcols_[j].size() != n || Wcols_[j].size() != n)
+        {
+            FatalIOErrorInFunction(is)
+                << file << " has columns of " << Vcols_[j].size() << " and "
+                << Wcols_[j].size() << " values for " << n << " solid nodes:"
+                << " it belongs to another solid mesh. Remove it (the"
+                << " coupling iterations then start without the last steps'"
+                << " columns) or restart from a time written with this mesh"
+                << exit(FatalIOError);
+        }
+    }
+    stepCols_ = steps;
+    Info<< type() << ' ' << name_ << ": " << steps.size()
+        << " coupling-iteration columns read from " << file << endl;
 }
 
 
