@@ -50,6 +50,17 @@ std::string writeCase(const std::string& name, const std::string& text)
     return file;
 }
 
+// A clamped 2 x 2 x 2 box to t = 1, written at 0.5, then the lines of extra
+// (line 6 onward)
+std::string smallBoxCase(const std::string& name, const std::string& extra)
+{
+    return writeCase(name, "box 2 2 2 0 0 0 1 1 1\n"
+                           "material neoHookean mu 80 K 4e5 rho 1\n"
+                           "fix xmin\n"
+                           "endTime 1\nwriteInterval 0.5\n" +
+                               extra);
+}
+
 // Rows of <output>/probes.dat
 std::vector<std::vector<double>> readProbes(const std::string& file)
 {
@@ -327,13 +338,7 @@ TEST(SolidRun, RampedLoadsUpdatedEverySubStep)
 // is an error naming the file, line and keyword
 TEST(SolidRun, ProbeIntervalKeyword)
 {
-    auto write = [](const std::string& name, const std::string& extra) {
-        return writeCase(name, "box 2 2 2 0 0 0 1 1 1\n"
-                               "material neoHookean mu 80 K 4e5 rho 1\n"
-                               "fix xmin\n"
-                               "endTime 1\nwriteInterval 0.5\n" +
-                                   extra);
-    };
+    const auto write = smallBoxCase;
     SolidRun byDefault(write("probeDefault", ""));
     SolidRun given(write("probeGiven", "probeInterval 0.02\n"));
     std::printf("probeInterval: default %g s (writeInterval 0.5 s / 50 = 0.01 s), given %g s "
@@ -357,13 +362,7 @@ TEST(SolidRun, ProbeIntervalKeyword)
 // or non-numeric value is an error naming the file, line and keyword
 TEST(SolidRun, StiffnessDampingKeyword)
 {
-    auto write = [](const std::string& name, const std::string& extra) {
-        return writeCase(name, "box 2 2 2 0 0 0 1 1 1\n"
-                               "material neoHookean mu 80 K 4e5 rho 1\n"
-                               "fix xmin\n"
-                               "endTime 1\nwriteInterval 0.5\n" +
-                                   extra);
-    };
+    const auto write = smallBoxCase;
     SolidRun byDefault(write("betaDefault", ""));
     SolidRun given(write("betaGiven", "stiffnessDamping 2e-4\n"));
     std::printf("stiffnessDamping: default %g s (0), given %g s (2e-4)\n",
