@@ -449,6 +449,22 @@ Foam::immersedSolids::deformable::~deformable()
 
 void Foam::immersedSolids::deformable::advance(const scalar dt)
 {
+    string why;
+    if (!tryAdvance(dt, why))
+    {
+        FatalErrorInFunction
+            << "The immersed solid failed at time " << time_ << ": "
+            << why.c_str() << exit(FatalError);
+    }
+}
+
+
+bool Foam::immersedSolids::deformable::tryAdvance
+(
+    const scalar dt,
+    string& why
+)
+{
     std::vector<smoothedSolid::Vec3>& f = solid_->externalForce();
     forAll(externalForce_, i)
     {
@@ -460,9 +476,8 @@ void Foam::immersedSolids::deformable::advance(const scalar dt)
     }
     catch (const smoothedSolid::Error& err)
     {
-        FatalErrorInFunction
-            << "The immersed solid failed at time " << time_ << ": "
-            << err.what() << exit(FatalError);
+        why = err.what();
+        return false;
     }
     time_ += dt;
     // the velocity the fluid sees: the mean over the step, (x^{n+1} -
@@ -474,6 +489,7 @@ void Foam::immersedSolids::deformable::advance(const scalar dt)
     const pointField x0(points_);
     fromSolid();
     velocities_ = (points_ - x0)/dt;
+    return true;
 }
 
 
