@@ -1103,6 +1103,28 @@ void Foam::immersedBoundary::updateRamps
         }
     }
     ramps_.transfer(running);
+
+    // (DebugSwitches { immersedBoundary 1; } in controlDict)
+    if (debug && ramps_.size())
+    {
+        scalar tauMin = GREAT, tauMax = 0, frozenMax = 0;
+        label nFresh = 0;
+        forAllConstIters(ramps_, iter)
+        {
+            const ramp& r = iter.val();
+            tauMin = min(tauMin, r.tau);
+            tauMax = max(tauMax, r.tau);
+            frozenMax = max(frozenMax, mag(r.frozen));
+            if (r.start > t - 1.5*dt)
+            {
+                ++nFresh;
+            }
+        }
+        Pout<< "immersedBoundary ramps at t = " << t << ": " << ramps_.size()
+            << " running (" << nFresh << " new), tau/dt "
+            << tauMin/dt << " to " << tauMax/dt << ", max |frozen flux| "
+            << frozenMax << endl;
+    }
 }
 
 

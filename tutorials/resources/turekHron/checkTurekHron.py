@@ -25,21 +25,25 @@ limit cycle, not a growing or decaying oscillation); u_x(A), lift, the
 drag frequency and the FFT frequency of u_y reported.
 
 FSI2 --short (onset of flapping, for runs too short for the limit cycle;
-from --from T0, default 2 s, the end of the inflow ramp): the transverse
-displacement u_y(A) is cut into half-periods at its sign changes
-(hysteresis band 1 % of max |u_y| so noise does not count), each with its
-peak |u_y|. Checks:
-  - the flag flaps: at least --halves (default 4) complete half-periods,
-    i.e. u_y(A) changes sign at least 5 times, the last peak above
-    --floor (default 0.1 mm: clear of round-off, 2 % of a fluid cell);
-  - it grows: each of the last --growth (default 3) half-period peaks is
-    larger than the one before (the symmetric state is unstable, as in
-    the benchmark), or the limit cycle is already reached (last peak at
-    least 90 % of 80.6 mm);
-  - in the benchmark's mode: the frequency 1/(2 mean half-period) of
-    those half-periods within 25 % of 2.0 Hz (a numerical instability
-    of the coupling oscillates at the time-step scale, not at 2 Hz).
-The growth factor per half-period and the growth rate are reported.
+from --from T0, default 2 s, the end of the inflow ramp): the turning
+points of the transverse displacement u_y(A) (a maximum or minimum counts
+once u_y has moved back from it by --band, default 5 %, of its range, so
+noise does not count) and the swings between them. The flag flaps about a
+mean deflection that drifts, so a swing is compared with the one a period
+before (the same direction). Checks:
+  - the flag flaps: at least --growth + 2 swings (default 5), the last
+    above --floor (default 0.1 mm: clear of round-off, 1 % of a fluid
+    cell). A flag bent to one side and held there, or resting on the
+    centreline, fails;
+  - it grows: each of the last --growth (default 3) swings larger than
+    the one a period before (the symmetric state is unstable, as in the
+    benchmark), or the limit cycle already reached (last swing at least
+    90 % of 2 x 80.6 mm). A decaying oscillation fails;
+  - in the benchmark's mode: the frequency (half the inverse of the mean
+    time between the turning points used) within --freq-tol (default
+    10 %) of 2.0 Hz. A numerical instability of the coupling also flaps
+    and grows, but at the time-step scale, and fails here.
+The growth factor per period and the growth rate are reported.
 """
 import argparse
 import glob
@@ -214,29 +218,28 @@ def fft_frequency(t, u, t0, t1):
     return f[k]
 
 
-def half_periods(t, u, band):
-    """Sign-change times of u with hysteresis band (the sign switches when
-    u passes +-band; the time is the last zero crossing before), and the
-    peak |u| and sign of each complete half-period between them."""
-    state = 0
-    cross = []
-    last_zero = None
+def turning_points(t, u, band):
+    """The alternating maxima and minima of u: a candidate extremum is taken
+    once u has moved back from it by more than band (so noise smaller than
+    band does not count); the first sample is never one. Returns a list of
+    (time, value, +1 for a maximum or -1 for a minimum)."""
+    ext = []
+    ihi = ilo = 0
+    state = 0                      # +1 rising (seeking a max), -1 falling
     for i in range(1, len(u)):
-        if (u[i - 1] < 0) != (u[i] < 0):
-            last_zero = t[i - 1] - u[i - 1] * (t[i] - t[i - 1]) / (u[i] - u[i - 1])
-        s = 1 if u[i] > band else (-1 if u[i] < -band else 0)
-        if s != 0 and s != state:
-            if state != 0 and last_zero is not None:
-                cross.append(last_zero)
-            state = s
-    halves = []
-    for a, b in zip(cross[:-1], cross[1:]):
-        m = (t >= a) & (t <= b)
-        if not m.any():
-            continue
-        k = np.argmax(np.abs(u[m]))
-        halves.append((a, b, abs(u[m][k]), np.sign(u[m][k])))
-    return cross, halves
+        if state >= 0 and u[i] > u[ihi]:
+            ihi = i
+        if state <= 0 and u[i] < u[ilo]:
+            ilo = i
+        if state >= 0 and u[i] < u[ihi] - band:
+            if ihi > 0:
+                ext.append((t[ihi], u[ihi], 1))
+            state, ilo = -1, i
+        elif state <= 0 and u[i] > u[ilo] + band:
+            if ilo > 0:
+                ext.append((t[ilo], u[ilo], -1))
+            state, ihi = 1, i
+    return ext
 
 
 # ------------------------------------------------------------------ checks
@@ -318,41 +321,45 @@ def check_fsi2_short(t, uy, tf, fx, dz, args):
     t, u = t[m], 1e3 * uy[m]
     if len(t) < 3:
         sys.exit("FAIL: no u_y(A) data after t = %g s" % args.from_time)
-    band = max(0.01 * np.abs(u).max(), 1e-9)
-    cross, halves = half_periods(t, u, band)
-    print("Turek & Hron FSI2, onset of flapping, t = %g..%g s: %d sign"
-          " changes of u_y(A), %d complete half-periods"
-          % (t[0], t[-1], len(cross), len(halves)))
-    for a, b, p, s in halves[-8:]:
-        print("    half-period %.4f..%.4f s  %s  peak |u_y(A)| %.4g mm"
-              % (a, b, "+" if s > 0 else "-", p))
-    ok = v.condition("complete half-periods", len(halves),
-                     "at least %d" % args.halves, len(halves) >= args.halves)
-    if not halves:
-        return
-    peaks = [h[2] for h in halves]
-    v.condition("last half-period peak [mm]", peaks[-1],
-                "above %g mm" % args.floor, peaks[-1] > args.floor)
+    band = max(args.band * (u.max() - u.min()), 1e-9)
+    ext = turning_points(t, u, band)
+    # swings between successive turning points (down, up, down, ...); a
+    # swing and the one a period earlier go the same way, so their ratio
+    # is the growth per period whatever the mean deflection (the flag
+    # flaps about a slowly drifting offset)
+    swings = [abs(b[1] - a[1]) for a, b in zip(ext[:-1], ext[1:])]
+    print("Turek & Hron FSI2, onset of flapping, t = %g..%g s: %d turning"
+          " points of u_y(A) (band %.3g mm), %d swings"
+          % (t[0], t[-1], len(ext), band, len(swings)))
+    for (ta, ua, sa), (tb, ub, _) in list(zip(ext[:-1], ext[1:]))[-8:]:
+        print("    %.4f s %s %8.3f mm -> %.4f s %8.3f mm  swing %.4g mm"
+              % (ta, "max" if sa > 0 else "min", ua, tb, ub, abs(ub - ua)))
     n = args.growth
-    if not ok or len(peaks) < n + 1:
-        v.condition("growing half-period peaks", len(peaks),
-                    "need %d half-periods" % (n + 1), False)
+    ok = v.condition("swings of u_y(A)", len(swings),
+                     "at least %d (%d growth ratios)" % (n + 2, n),
+                     len(swings) >= n + 2)
+    if not swings:
         return
-    last = peaks[-n - 1:]
-    ratios = [b / a for a, b in zip(last[:-1], last[1:])]
-    saturated = peaks[-1] >= 0.9 * ref["uy"][1]
-    r = math.exp(sum(math.log(x) for x in ratios) / n)
-    durations = [h[1] - h[0] for h in halves[-n:]]
-    th = sum(durations) / n
-    v.condition("growth per half-period", r,
+    v.condition("last swing [mm]", swings[-1],
+                "above %g mm" % args.floor, swings[-1] > args.floor)
+    if not ok:
+        return
+    ratios = [swings[j] / swings[j - 2]
+              for j in range(len(swings) - n, len(swings))]
+    saturated = swings[-1] >= 0.9 * 2 * ref["uy"][1]
+    g = math.exp(sum(math.log(x) for x in ratios) / n)
+    # period: twice the mean time between the turning points used
+    te = [e[0] for e in ext[-(n + 3):]]
+    period = 2 * (te[-1] - te[0]) / (len(te) - 1)
+    v.condition("growth per period", g,
                 "each of the last %d > 1 (%s)%s"
                 % (n, " ".join("%.3f" % x for x in ratios),
                    ", or saturated" if saturated else ""),
                 all(x > 1 for x in ratios) or saturated)
-    v.report("growth rate [1/s]", math.log(r) / th)
-    v.relative("half-period frequency [Hz]", 1.0 / (2 * th), ref["uy"][2],
-               25.0)
-    mt = tf >= halves[-2][0]
+    v.report("growth rate [1/s]", math.log(g) / period)
+    v.relative("flapping frequency [Hz]", 1.0 / period, ref["uy"][2],
+               args.freq_tol)
+    mt = tf >= te[-3]
     if mt.any():
         v.report("drag mean last period [N/m]", float(np.mean(fx[mt])) / dz,
                  ref["drag"][0])
@@ -372,12 +379,16 @@ def main():
                    help="FSI2: check the onset of flapping only")
     p.add_argument("--from", dest="from_time", type=float, default=2.0,
                    help="--short: start of the analysis [s] (default 2)")
-    p.add_argument("--halves", type=int, default=4,
-                   help="--short: complete half-periods required (4)")
     p.add_argument("--growth", type=int, default=3,
-                   help="--short: successive growing peaks required (3)")
+                   help="--short: last swings each larger than the one a"
+                        " period before (3)")
+    p.add_argument("--band", type=float, default=0.05,
+                   help="--short: a turning point counts when u_y moves"
+                        " back by this fraction of its range (0.05)")
+    p.add_argument("--freq-tol", dest="freq_tol", type=float, default=10.0,
+                   help="--short: frequency tolerance [%%] (10)")
     p.add_argument("--floor", type=float, default=0.1,
-                   help="--short: last peak at least this [mm] (0.1)")
+                   help="--short: last swing at least this [mm] (0.1)")
     args = p.parse_args()
 
     dz = read_depth(args.case, args.depth)
