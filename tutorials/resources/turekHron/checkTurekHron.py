@@ -32,13 +32,15 @@ noise does not count) and the swings between them. The flag flaps about a
 mean deflection that drifts, so a swing is compared with the one a period
 before (the same direction). Checks:
   - the flag flaps: at least --growth + 2 swings (default 5), the last
-    above --floor (default 0.1 mm: clear of round-off, 1 % of a fluid
-    cell). A flag bent to one side and held there, or resting on the
+    above --floor (default 0.1 mm: clear of round-off, 1 to 2 % of a
+    fluid cell). A flag bent to one side and held there, or resting on the
     centreline, fails;
   - it grows: each of the last --growth (default 3) swings larger than
     the one a period before (the symmetric state is unstable, as in the
     benchmark), or the limit cycle already reached (last swing at least
-    90 % of 2 x 80.6 mm). A decaying oscillation fails;
+    90 % of 2 x 80.6 mm; a coarse mesh whose limit cycle is smaller, as
+    N = 24's +-65 mm, fails once saturated: run it only into the growth).
+    A decaying oscillation fails;
   - in the benchmark's mode: the frequency (half the inverse of the mean
     time between the turning points used) within --freq-tol (default
     10 %) of 2.0 Hz. A numerical instability of the coupling also flaps
@@ -359,7 +361,7 @@ def check_fsi2_short(t, uy, tf, fx, dz, args):
     v.report("growth rate [1/s]", math.log(g) / period)
     v.relative("flapping frequency [Hz]", 1.0 / period, ref["uy"][2],
                args.freq_tol)
-    mt = tf >= te[-3]
+    mt = (tf >= te[-3]) & (tf <= te[-1])
     if mt.any():
         v.report("drag mean last period [N/m]", float(np.mean(fx[mt])) / dz,
                  ref["drag"][0])
@@ -390,6 +392,8 @@ def main():
     p.add_argument("--floor", type=float, default=0.1,
                    help="--short: last swing at least this [mm] (0.1)")
     args = p.parse_args()
+    if args.growth < 1:
+        p.error("--growth must be at least 1")
 
     dz = read_depth(args.case, args.depth)
     t, ux, uy = read_displacement(args.case, args.probe)
