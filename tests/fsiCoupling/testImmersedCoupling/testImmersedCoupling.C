@@ -43,12 +43,102 @@ Description
 #include "calculatedFvPatchField.H"
 #include "meshSearch.H"
 #include "polyMeshTetDecomposition.H"
+#include "immersedCutCells.H"
+#include "triSurface.H"
+#include "triSurfaceSearch.H"
 
 using namespace Foam;
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
 static bool allPassed = true;
+
+// A closed triangulated surface from points and triangles, oriented
+// outward (flipped if its signed volume is negative); its volume
+static triSurface closedSurface
+(
+    const pointField& pts,
+    List<labelledTri> tris,
+    scalar& volume
+)
+{
+    volume = 0;
+    for (const labelledTri& t : tris)
+    {
+        volume += (pts[t[0]] & (pts[t[1]] ^ pts[t[2]]))/6;
+    }
+    if (volume < 0)
+    {
+        for (labelledTri& t : tris)
+        {
+            std::swap(t[1], t[2]);
+        }
+        volume = -volume;
+    }
+    return triSurface(tris, geometricSurfacePatchList(), pts);
+}
+
+
+// Icosphere of radius R about c, n subdivisions (points projected on the
+// sphere)
+static triSurface icosphere
+(
+    const point& c,
+    const scalar R,
+    const label n,
+    scalar& volume
+)
+{
+    const scalar g = (1 + std::sqrt(5.0))/2;
+    DynamicList<point> p
+    ({
+        point(-1, g, 0), point(1, g, 0), point(-1, -g, 0), point(1, -g, 0),
+        point(0, -1, g), point(0, 1, g), point(0, -1, -g), point(0, 1, -g),
+        point(g, 0, -1), point(g, 0, 1), point(-g, 0, -1), point(-g, 0, 1)
+    });
+    DynamicList<FixedList<label, 3>> t
+    ({
+        {0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
+        {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+        {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
+        {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}
+    });
+    for (point& q : p) { q /= mag(q); }
+    for (label level = 0; level < n; ++level)
+    {
+        HashTable<label, edge, Hash<edge>> mid;
+        auto midpoint = [&](const label a, const label b)
+        {
+            const edge e(a, b);
+            const auto iter = mid.cfind(e);
+            if (iter.found()) { return *iter; }
+            point m = 0.5*(p[a] + p[b]);
+            m /= mag(m);
+            p.append(m);
+            mid.insert(e, p.size() - 1);
+            return label(p.size() - 1);
+        };
+        DynamicList<FixedList<label, 3>> next;
+        for (const FixedList<label, 3>& f : t)
+        {
+            const label ab = midpoint(f[0], f[1]);
+            const label bc = midpoint(f[1], f[2]);
+            const label ca = midpoint(f[2], f[0]);
+            next.append(FixedList<label, 3>({f[0], ab, ca}));
+            next.append(FixedList<label, 3>({f[1], bc, ab}));
+            next.append(FixedList<label, 3>({f[2], ca, bc}));
+            next.append(FixedList<label, 3>({ab, bc, ca}));
+        }
+        t.transfer(next);
+    }
+    pointField pts(p.size());
+    forAll(p, i) { pts[i] = c + R*p[i]; }
+    List<labelledTri> tris(t.size());
+    forAll(t, i) { tris[i] = labelledTri(t[i][0], t[i][1], t[i][2], 0); }
+    return closedSurface(pts, tris, volume);
+}
+
+
 
 void check
 (
@@ -99,7 +189,7 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
-    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | enclosed | outside");
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | enclosed | outside | cutCells");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -986,6 +1076,227 @@ int main(int argc, char *argv[])
             " can fail)", nChanged, 1, 0, nChanged > 0);
         check("local updates used", boundary.nLocalUpdates(), 1, 0,
             boundary.nLocalUpdates() > 0);
+    }
+    else if (test == "cutCells")
+    {
+        // 1. The closed forms against sampling: random vertex values, the
+        //    positive fraction of points drawn uniformly in the simplex
+        //    (normalised exponentials); a crude estimate (the fraction of
+        //    positive vertices) as the negative control
+        {
+            Random rnd(7);
+            const label nSets = 200, nSamples = 20000;
+            scalar errTri = 0, errTet = 0, errCrude = 0;
+            for (label s = 0; s < nSets; ++s)
+            {
+                FixedList<scalar, 4> phi;
+                for (scalar& v : phi) { v = 2*rnd.sample01<scalar>() - 1; }
+                const FixedList<scalar, 3> phi3({phi[0], phi[1], phi[2]});
+                label inTri = 0, inTet = 0;
+                for (label k = 0; k < nSamples; ++k)
+                {
+                    FixedList<scalar, 4> w;
+                    scalar sum = 0;
+                    for (scalar& v : w)
+                    {
+                        v = -std::log(max(rnd.sample01<scalar>(), VSMALL));
+                        sum += v;
+                    }
+                    const scalar sum3 = sum - w[3];
+                    scalar v3 = 0, v4 = 0;
+                    for (label j = 0; j < 3; ++j)
+                    {
+                        v3 += w[j]*phi[j]/sum3;
+                        v4 += w[j]*phi[j]/sum;
+                    }
+                    v4 += w[3]*phi[3]/sum;
+                    if (v3 > 0) { ++inTri; }
+                    if (v4 > 0) { ++inTet; }
+                }
+                const scalar fTri = scalar(inTri)/nSamples;
+                const scalar fTet = scalar(inTet)/nSamples;
+                errTri = max(errTri,
+                    mag(immersedCutCells::triangleFraction(phi3) - fTri));
+                errTet = max(errTet,
+                    mag(immersedCutCells::tetFraction(phi) - fTet));
+                label nPos = 0;
+                for (const scalar v : phi) { if (v > 0) { ++nPos; } }
+                errCrude = max(errCrude, mag(nPos/4.0 - fTet));
+            }
+            // standard error of one estimate <= 0.5/sqrt(20000) = 0.0035
+            check("triangle fraction against sampling (200 sets, largest"
+                " difference)", errTri, 0, 0.02, errTri < 0.02);
+            check("tetrahedron fraction against sampling", errTet, 0, 0.02,
+                errTet < 0.02);
+            check("negative control: positive vertices / 4 against sampling"
+                " (must fail)", errCrude, 0, 0.02, errCrude > 0.02);
+
+            // exact: in the reference tetrahedron x, y, z >= 0,
+            // x + y + z <= 1 the part x > a is (1 - a)^3 of it, the part
+            // x + y < b is b^2 (3 - 2b) of it (int_0^b 6 s (1 - s) ds);
+            // in the reference triangle the part x > a is (1 - a)^2
+            const scalar eTet1 =
+                immersedCutCells::tetFraction({-0.3, 0.7, -0.3, -0.3});
+            const scalar eTet2 =
+                immersedCutCells::tetFraction({-0.3, 0.7, 0.7, -0.3});
+            const scalar eTet3 =
+                immersedCutCells::tetFraction({0.3, -0.7, -0.7, 0.3});
+            const scalar eTri =
+                immersedCutCells::triangleFraction({-0.3, 0.7, -0.3});
+            check("tet, x > 0.3", eTet1, 0.343, 1e-12,
+                mag(eTet1 - 0.343) < 1e-12);
+            check("tet, x + y > 0.3", eTet2, 1 - 0.09*2.4, 1e-12,
+                mag(eTet2 - (1 - 0.09*2.4)) < 1e-12);
+            check("tet, x + y < 0.3", eTet3, 0.09*2.4, 1e-12,
+                mag(eTet3 - 0.09*2.4) < 1e-12);
+            check("triangle, x > 0.3", eTri, 0.49, 1e-12,
+                mag(eTri - 0.49) < 1e-12);
+        }
+
+        // The wall inside each cut cell: its area vector closes the cell's
+        // open face areas, A_w = -sum_f A_open,f (out of the cell)
+        auto wallVectors = [&](const immersedCutCells& cut)
+        {
+            const labelList& cells = cut.cells();
+            vectorField Aw(cells.size(), Zero);
+            const labelUList& own = mesh.faceOwner();
+            forAll(cells, i)
+            {
+                for (const label facei : mesh.cells()[cells[i]])
+                {
+                    const vector A = cut.openArea(facei);
+                    Aw[i] -= own[facei] == cells[i] ? A : -A;
+                }
+            }
+            return Aw;
+        };
+        // On a planar face (a triangle) the aperture is the open fraction:
+        // a_f S_f is the open area vector
+        auto planarApertureError = [&](const immersedCutCells& cut)
+        {
+            scalar err = 0;
+            for (const label celli : cut.cells())
+            {
+                for (const label facei : mesh.cells()[celli])
+                {
+                    if (mesh.faces()[facei].size() == 3)
+                    {
+                        const vector& Sf = mesh.faceAreas()[facei];
+                        err = max(err,
+                            mag(cut.aperture(facei)*Sf - cut.openArea(facei))
+                           /mag(Sf));
+                    }
+                }
+            }
+            return err;
+        };
+        labelList allCells(identity(mesh.nCells()));
+        const scalarField V(mesh.V().field());
+
+        // 2. A tilted plane z = z0 + s (x - 0.5) (the top of a large prism)
+        //    through the box [0,1]^3: phi is linear in the box, so the cut
+        //    geometry is exact to round-off. Solid volume in the box z0, wall
+        //    area sqrt(1 + s^2), the wall normal n of the plane in every cell
+        {
+            const scalar z0 = 0.47, s = 0.3;
+            pointField pts(8);
+            label k = 0;
+            for (const scalar x : {-1.0, 2.0})
+            for (const scalar y : {-1.0, 2.0})
+            {
+                pts[k++] = point(x, y, -1);
+                pts[k++] = point(x, y, z0 + s*(x - 0.5));
+            }
+            // corners: 0 (-1,-1) 2 (-1,2) 4 (2,-1) 6 (2,2); +1 on top
+            List<labelledTri> tris
+            ({
+                labelledTri(0, 4, 6, 0), labelledTri(0, 6, 2, 0),
+                labelledTri(1, 3, 7, 0), labelledTri(1, 7, 5, 0),
+                labelledTri(0, 1, 5, 0), labelledTri(0, 5, 4, 0),
+                labelledTri(2, 6, 7, 0), labelledTri(2, 7, 3, 0),
+                labelledTri(0, 2, 3, 0), labelledTri(0, 3, 1, 0),
+                labelledTri(4, 5, 7, 0), labelledTri(4, 7, 6, 0)
+            });
+            scalar prismVolume;
+            const triSurface surf(closedSurface(pts, tris, prismVolume));
+            const triSurfaceSearch search(surf);
+            immersedCutCells cut(mesh);
+            cut.update(search, allCells);
+
+            const scalar Vs = sum((1 - cut.fraction())*V);
+            const vectorField Aw(wallVectors(cut));
+            const vector n = vector(-s, 0, 1)/std::sqrt(1 + s*s);
+            scalar area = 0, offNormal = 0;
+            label nCut = 0;
+            forAll(Aw, i)
+            {
+                area += mag(Aw[i]);
+                offNormal = max(offNormal, mag(Aw[i] - (Aw[i] & n)*n));
+                if (cut.fraction()[i] > 0 && cut.fraction()[i] < 1) { ++nCut; }
+            }
+            Info<< "tilted plane: " << nCut << " cut cells" << endl;
+            const scalar eAp = planarApertureError(cut);
+            check("plane: aperture x S_f against the open area on the"
+                " triangular faces", eAp, 0, 1e-12, eAp < 1e-12);
+            check("plane: solid volume in the box", Vs, z0, 1e-9,
+                mag(Vs - z0) < 1e-9);
+            check("plane: wall area", area, std::sqrt(1 + s*s), 1e-9,
+                mag(area - std::sqrt(1 + s*s)) < 1e-9);
+            check("plane: wall vector off the plane's normal (largest)",
+                offNormal, 0, 1e-12, offNormal < 1e-12);
+        }
+
+        // 3. Spheres (icospheres, 5 subdivisions) of radius 0.2 and 0.4
+        //    (2 and 4 fluid cells): the solid volume and wall area against
+        //    those of the faceted surface itself. Linear phi on a curved
+        //    surface is second order: the errors must fall with (h/R)^2
+        //    (order >= 1.5 from the two radii) and be within 2 % at R = 4 h.
+        //    For comparison: the staircase of the cells whose centre is
+        //    inside
+        {
+            scalarField eV(2), eA(2);
+            const scalarList radii({0.2, 0.4});
+            forAll(radii, r)
+            {
+                const point c(0.5, 0.5, 0.5);
+                scalar Vsphere;
+                const triSurface surf(icosphere(c, radii[r], 5, Vsphere));
+                scalar Asphere = 0;
+                forAll(surf, i) { Asphere += surf[i].mag(surf.points()); }
+                const triSurfaceSearch search(surf);
+                immersedCutCells cut(mesh);
+                cut.update(search, allCells);
+                const scalar Vs = sum((1 - cut.fraction())*V);
+                const scalar area = sum(mag(wallVectors(cut)));
+                scalar Vstair = 0;
+                forAll(allCells, i)
+                {
+                    if (cut.centreDistance(allCells[i]) < 0)
+                    {
+                        Vstair += V[i];
+                    }
+                }
+                eV[r] = mag(Vs/Vsphere - 1);
+                eA[r] = mag(area/Asphere - 1);
+                Info<< "sphere R = " << radii[r] << ": solid volume " << Vs
+                    << " against the faceted " << Vsphere << " (4/3 pi R^3 "
+                    << 4.0/3*constant::mathematical::pi*pow3(radii[r])
+                    << "), relative error " << eV[r] << "; wall area " << area
+                    << " against " << Asphere << ", relative error " << eA[r]
+                    << "; staircase of centres inside: volume error "
+                    << mag(Vstair/Vsphere - 1) << endl;
+            }
+            const scalar orderV = std::log(eV[0]/eV[1])/std::log(2.0);
+            const scalar orderA = std::log(eA[0]/eA[1])/std::log(2.0);
+            check("sphere: order of the volume error", orderV, 2, 0.5,
+                orderV > 1.5);
+            check("sphere: order of the wall area error", orderA, 2, 0.5,
+                orderA > 1.5);
+            check("sphere R = 4 h: volume (relative error)", eV[1], 0, 0.02,
+                eV[1] < 0.02);
+            check("sphere R = 4 h: wall area (relative error)", eA[1], 0,
+                0.02, eA[1] < 0.02);
+        }
     }
     else if (test == "outside")
     {
