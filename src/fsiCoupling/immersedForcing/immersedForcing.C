@@ -202,6 +202,11 @@ void Foam::fv::immersedForcing::searchPairs()
     UIndirectList<scalar>(chi, boundary_.coveredCells()) = 1.0;
     coverage_.correctBoundaryConditions();
 
+    if (mesh_.time().writeTime())
+    {
+        updateSolidFraction();
+    }
+
     Info<< type() << ' ' << name_ << ": solid at t = " << solid.time()
         << ", covered cells " << returnReduce(pairs.coveredCells().size(),
                sumOp<label>())
@@ -347,6 +352,35 @@ void Foam::fv::immersedForcing::write()
 
     }
     coupling_.solid().write();
+}
+
+
+void Foam::fv::immersedForcing::updateSolidFraction()
+{
+    // the covered cells and their face neighbours (a cell the solid
+    // touches is one of them with either coverage)
+    labelHashSet cells(boundary_.coveredCells());
+    const labelListList& cellCells = mesh_.cellCells();
+    for (const label celli : boundary_.coveredCells())
+    {
+        cells.insert(cellCells[celli]);
+    }
+    const labelList cellList(cells.sortedToc());
+
+    const pointField points
+    (
+        UIndirectList<point>(coupling_.solid().points(), surfacePoints_)
+    );
+    const triSurface surface(surfaceTriangles_, points);
+    cutCells_.update(triSurfaceSearch(surface), cellList);
+
+    scalarField& f = solidFraction_.primitiveFieldRef();
+    f = 0;
+    forAll(cellList, i)
+    {
+        f[cellList[i]] = 1 - cutCells_.fraction()[i];
+    }
+    solidFraction_.correctBoundaryConditions();
 }
 
 
@@ -669,6 +703,20 @@ Foam::fv::immersedForcing::immersedForcing
         dimensionedScalar(dimless, Zero),
         "zeroGradient"
     ),
+    solidFraction_
+    (
+        IOobject
+        (
+            "immersedSolidFraction",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::NO_READ,
+            IOobject::AUTO_WRITE
+        ),
+        mesh,
+        dimensionedScalar(dimless, Zero),
+        "zeroGradient"
+    ),
     coveredVelocity_(),
     advanceIndex_(-1),
     searchIndex_(-1),
@@ -697,6 +745,7 @@ Foam::fv::immersedForcing::immersedForcing
     boundary_(mesh),
     force_(Zero),
     ghostWall_(true),
+    cutCells_(mesh),
     source_(Zero),
     slip_(0),
     solidTime_(0),
