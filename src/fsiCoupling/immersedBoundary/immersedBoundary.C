@@ -79,6 +79,10 @@ void Foam::immersedBoundary::update
     const vectorField& coveredVelocity
 )
 {
+    cutFaces_.clear();
+    cutAperture_.clear();
+    cutVelocity_.clear();
+
     // The cells covered since the last update (the index is still the
     // last update's) and those uncovered since
     DynamicList<label> newlyCovered;
@@ -993,6 +997,13 @@ void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
             }
         }
     }
+
+    forAll(cutFaces_, i)
+    {
+        const label facei = cutFaces_[i];
+        const scalar a = cutAperture_[i];
+        phiI[facei] = a*phiI[facei] + (1 - a)*(cutVelocity_[i] & Sf[facei]);
+    }
 }
 
 
@@ -1251,6 +1262,10 @@ void Foam::immersedBoundary::constrainLaplacian
     for (const label facei : internalFaces_)
     {
         rI[facei] = 0;
+    }
+    forAll(cutFaces_, i)
+    {
+        rI[cutFaces_[i]] *= cutAperture_[i];
     }
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     auto& rB = rAUf.boundaryFieldRef();

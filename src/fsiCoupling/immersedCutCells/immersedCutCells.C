@@ -227,6 +227,21 @@ void Foam::immersedCutCells::update
     samples.append(UIndirectList<point>(mesh_.faceCentres(), faceLabels)());
     samples.append(UIndirectList<point>(mesh_.cellCentres(), cells_)());
 
+    // a 2D case (empty front and back): the samples on the mid-plane, so
+    // that the solid's surfaces facing the empty patches (a slab spanning
+    // the depth) do not count
+    const Vector<label>& solD = mesh_.solutionD();
+    const point mid(mesh_.bounds().midpoint());
+    for (direction d = 0; d < vector::nComponents; ++d)
+    {
+        if (solD[d] < 0)
+        {
+            for (point& x : samples)
+            {
+                x[d] = mid[d];
+            }
+        }
+    }
     const scalarField phi(signedDistance(surface, pointField(samples)));
     label k = 0;
     for (const label pointi : pointLabels) { pointPhi_.set(pointi, phi[k++]); }

@@ -176,7 +176,7 @@ void Foam::fv::immersedForcing::searchPairs()
 
     // the immersed faces and the wall location count as search time
     const clockValue wallStart(true);
-    boundary_.update(pairs.coveredCells(), coveredVelocity_);
+    updateBoundary();
     if (debug)
     {
         Info<< "immersedForcing: immersed faces " << wallStart.elapsed()
@@ -210,6 +210,8 @@ void Foam::fv::immersedForcing::searchPairs()
     Info<< type() << ' ' << name_ << ": solid at t = " << solid.time()
         << ", covered cells " << returnReduce(pairs.coveredCells().size(),
                sumOp<label>())
+        << (cut_ ? ", of them cut cells " : "")
+        << (cut_ ? Foam::name(cutCellList_.size()) : word::null)
         << ", fluid cells enclosed by the solid " << returnReduce
            (boundary_.nEnclosed(), sumOp<label>())
         << " in " << returnReduce(boundary_.nEnclosedRegions(), sumOp<label>())
@@ -355,6 +357,141 @@ void Foam::fv::immersedForcing::write()
 }
 
 
+void Foam::fv::immersedForcing::updateBoundary()
+{
+    const immersedPairs& pairs = coupling_.pairs();
+    const labelList& covered = pairs.coveredCells();
+    if (!cut_)
+    {
+        boundary_.update(covered, coveredVelocity_);
+        coveredPairIndex_ = identity(covered.size());
+        return;
+    }
+
+    // the cut-cell geometry of the covered cells
+    const pointField points
+    (
+        UIndirectList<point>(coupling_.solid().points(), surfacePoints_)
+    );
+    const triSurface surface(surfaceTriangles_, points);
+    cutCells_.update(triSurfaceSearch(surface), covered);
+
+    // a covered cell whose centre lies outside the solid (by more than
+    // 1e-3 of its size: a centre on the surface is no tie), with some fluid
+    // in it (more than kappaMin of its volume), beside a covered cell whose
+    // centre is inside (the solid is thick there: a thin solid, whose
+    // cells' centres all lie outside, keeps its staircase and stays tight)
+    // is a cut cell. (Cut cells whose centre is inside, down to kappaMin,
+    // overdid the wall shear: the cylinder's c_D +3.9 % instead of -0.8 %)
+    const scalar kappaMin = 0.02;
+    Map<label> index(2*covered.size());
+    forAll(covered, i)
+    {
+        index.insert(covered[i], i);
+    }
+    const labelListList& cellCells = mesh_.cellCells();
+    boolList isCut(covered.size(), false);
+    forAll(covered, i)
+    {
+        const label celli = covered[i];
+        if
+        (
+            cutCells_.centreDistance(celli) <= 1e-3*cbrt(mesh_.V()[celli])
+         || cutCells_.fraction()[i] <= kappaMin
+        )
+        {
+            continue;
+        }
+        for (const label nbr : cellCells[celli])
+        {
+            const auto iter = index.cfind(nbr);
+            if (iter.found() && cutCells_.centreDistance(nbr) < 0)
+            {
+                isCut[i] = true;
+                break;
+            }
+        }
+    }
+
+    DynamicList<label> sCells, sIndex, xCells, xIndex;
+    DynamicList<vector> sVelocity;
+    forAll(covered, i)
+    {
+        if (isCut[i])
+        {
+            xCells.append(covered[i]);
+            xIndex.append(i);
+        }
+        else
+        {
+            sCells.append(covered[i]);
+            sIndex.append(i);
+            sVelocity.append(coveredVelocity_[i]);
+        }
+    }
+    boundary_.update(sCells, vectorField(sVelocity));
+    coveredPairIndex_.transfer(sIndex);
+    cutCellList_.transfer(xCells);
+    cutPairIndex_.transfer(xIndex);
+
+    // their faces to fluid and cut cells
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const vectorField& Sf = mesh_.faceAreas();
+    DynamicList<label> faces;
+    DynamicList<scalar> aperture;
+    DynamicList<vector> velocity;
+    labelHashSet done;
+    cutVelocity_.setSize(cutCellList_.size());
+    cutWall_.setSize(cutCellList_.size());
+    cutDistance_.setSize(cutCellList_.size());
+    forAll(cutCellList_, j)
+    {
+        const label celli = cutCellList_[j];
+        const label i = cutPairIndex_[j];
+        cutVelocity_[j] = coveredVelocity_[i];
+        cutDistance_[j] = cutCells_.centreDistance(celli);
+        cutWall_[j] = Zero;
+        for (const label facei : mesh_.cells()[celli])
+        {
+            if (!mesh_.isInternalFace(facei))
+            {
+                continue;
+            }
+            const label other = own[facei] == celli ? nei[facei] : own[facei];
+            const auto iter = index.cfind(other);
+            if (iter.found() && !isCut[*iter])
+            {
+                continue;   // to a covered cell: an immersed face
+            }
+            const scalar a = cutCells_.aperture(facei);
+            cutWall_[j] +=
+                (1 - a)*(own[facei] == celli ? Sf[facei] : -Sf[facei]);
+            if (done.insert(facei))
+            {
+                faces.append(facei);
+                aperture.append(a);
+                velocity.append
+                (
+                    iter.found()
+                  ? 0.5*(coveredVelocity_[i] + coveredVelocity_[*iter])
+                  : coveredVelocity_[i]
+                );
+            }
+        }
+    }
+    if (debug)
+    {
+        scalar closed = 0;
+        for (const scalar a : aperture) { closed += 1 - a; }
+        Info<< "immersedForcing: " << cutCellList_.size() << " cut cells, "
+            << faces.size() << " cut faces, sum (1 - a_f) " << closed
+            << ", sum |W| " << sum(mag(cutWall_)) << endl;
+    }
+    boundary_.setCutFaces(faces, aperture, vectorField(velocity));
+}
+
+
 void Foam::fv::immersedForcing::updateSolidFraction()
 {
     // the covered cells and their face neighbours (a cell the solid
@@ -395,7 +532,7 @@ void Foam::fv::immersedForcing::locateWall()
         UIndirectList<point>(coupling_.solid().points(), surfacePoints_)
     );
     const immersedPairs& pairs = coupling_.pairs();
-    if (pairs.coverage() == immersedPairs::coverageType::touching)
+    if (!cut_ && pairs.coverage() == immersedPairs::coverageType::touching)
     {
         boundary_.locateWall
         (
@@ -436,6 +573,32 @@ void Foam::fv::immersedForcing::fluidForce
         )
     );
     // To the solid nodes (held for the solid's next step)
+    if (cut_)
+    {
+        // to the pairs' covered cells, with the cut cells' force: the
+        // pressure of the cell on the closed part of its cut faces, and
+        // the wall shear of its fluid against the solid (constrain)
+        vectorField tp(coupling_.pairs().coveredCells().size(), Zero);
+        UIndirectList<vector>(tp, coveredPairIndex_) = t;
+        const scalarField& nu = tnu();
+        forAll(cutCellList_, j)
+        {
+            const label celli = cutCellList_[j];
+            const scalar h = cbrt(mesh_.V()[celli]);
+            tp[cutPairIndex_[j]] = rhoFluid_*
+            (
+                p[celli]*cutWall_[j]
+              + nu[celli]*mag(cutWall_[j])/max(cutDistance_[j], 0.05*h)
+               *(U[celli] - cutVelocity_[j])
+            );
+        }
+        cutForce_ = Zero;
+        for (const label i : cutPairIndex_)
+        {
+            cutForce_ += tp[i];
+        }
+        t.transfer(tp);
+    }
     vectorField& f = solid.externalForce();
     f = spread(t);
     if (semiImplicit_)
@@ -746,6 +909,8 @@ Foam::fv::immersedForcing::immersedForcing
     force_(Zero),
     ghostWall_(true),
     cutCells_(mesh),
+    cut_(false),
+    cutForce_(Zero),
     source_(Zero),
     slip_(0),
     solidTime_(0),
@@ -813,7 +978,7 @@ Foam::fv::immersedForcing::immersedForcing
     // Coverage of the initial configuration
     coupling_.updatePairs();
     coveredVelocity_ = coupling_.solidToFluid(coupling_.solid().velocities());
-    boundary_.update(coupling_.pairs().coveredCells(), coveredVelocity_);
+    updateBoundary();
     locateWall();
     UIndirectList<scalar>
     (
@@ -926,6 +1091,28 @@ void Foam::fv::immersedForcing::constrain
         diag[celli] *= scale;
         source[celli] *= scale;
     }
+
+    // Cut cells: the wall shear of the solid's surface inside them,
+    // nu |W| (u - u_s)/d (W the closed part of their faces, d the distance
+    // of the centre to the surface), implicit
+    if (cut_ && cutCellList_.size())
+    {
+        const singlePhaseTransportModel& transport =
+            mesh_.lookupObject<singlePhaseTransportModel>
+            (
+                "transportProperties"
+            );
+        const tmp<volScalarField> tnu(transport.nu());
+        forAll(cutCellList_, j)
+        {
+            const label celli = cutCellList_[j];
+            const scalar h = cbrt(mesh_.V()[celli]);
+            const scalar c = tnu()[celli]*mag(cutWall_[j])
+               /max(cutDistance_[j], 0.05*h);
+            diag[celli] += c;
+            source[celli] += c*cutVelocity_[j];
+        }
+    }
 }
 
 
@@ -938,6 +1125,12 @@ Foam::vector Foam::fv::immersedForcing::fluidSource
     if (!unconstrained_.empty())
     {
         total = rhoFluid_*(unconstrained_.residualSum(U) + coveredGradP_);
+    }
+    if (cut_)
+    {
+        // the cut cells' wall force, whose reaction the fluid receives
+        // through the closed part of their faces and the wall shear
+        total -= cutForce_;
     }
     reduce(total, sumOp<vector>());
     return total;
@@ -1279,6 +1472,19 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 << exit(FatalIOError);
         }
         ghostWall_ = (wall == "ghost");
+        cut_ = coeffs_.getOrDefault<bool>("cutCells", false);
+        if (cut_ && (Pstream::parRun() || coupling_.solid().isDeformable()))
+        {
+            // On the deformable Turek-Hron FSI1 flag the cut cells turned
+            // the early deflection to the other side (u_y(A) -0.057 mm at
+            // 0.73 s against +0.077 with the staircase and a positive
+            // reference): not understood yet (issue 10)
+            FatalIOErrorInFunction(coeffs_)
+                << "cutCells yes: only for a rigid solid in a serial run"
+                << " for now (experimental; deformable solids and parallel"
+                << " runs are not validated): remove the entry or set it to"
+                << " no" << exit(FatalIOError);
+        }
         const bool deformable = coupling_.solid().isDeformable();
         const word couplingType
         (
@@ -1312,7 +1518,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 << " and couplingRelaxation " << relaxation_
                 << " must be positive" << exit(FatalIOError);
         }
-        boundary_.setCoverRamp(coeffs_.getOrDefault<bool>("coverRamp", true));
+        boundary_.setCoverRamp(!cut_ && coeffs_.getOrDefault<bool>("coverRamp", true));
         if (rhoFluid_ <= 0)
         {
             FatalIOErrorInFunction(coeffs_)
