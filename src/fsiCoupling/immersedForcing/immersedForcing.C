@@ -1076,7 +1076,13 @@ void Foam::fv::immersedForcing::constrain
     }
     else
     {
-        eqn.setValues(cells, coveredVelocity_);
+        // (coveredVelocity_ is in the pairs' order: with cut cells the
+        // covered cells of the projection are a part of them)
+        const vectorField us
+        (
+            UIndirectList<vector>(coveredVelocity_, coveredPairIndex_)
+        );
+        eqn.setValues(cells, us);
     }
 
     // The covered rows are now decoupled (u = u_s); scaling their diagonal
