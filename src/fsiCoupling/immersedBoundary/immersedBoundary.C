@@ -268,6 +268,12 @@ void Foam::immersedBoundary::wallSegments
 
 void Foam::immersedBoundary::locateWall(const triSurface& surface)
 {
+    locateWall(triSurfaceSearch(surface));
+}
+
+
+void Foam::immersedBoundary::locateWall(const triSurfaceSearch& search)
+{
     DynamicList<label> faces(nFaces());
     DynamicList<label> cells(nFaces());
     DynamicList<point> start(nFaces());
@@ -276,7 +282,6 @@ void Foam::immersedBoundary::locateWall(const triSurface& surface)
 
     const pointField segStart(std::move(start));
     const pointField segEnd(std::move(end));
-    const triSurfaceSearch search(surface);
     List<pointIndexHit> hits;
     search.findLine(segStart, segEnd, hits);
 
