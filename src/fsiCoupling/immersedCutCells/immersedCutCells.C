@@ -6,6 +6,27 @@
 
 // * * * * * * * * * * * * * * * Static Functions  * * * * * * * * * * * * * //
 
+template<class Type>
+const Type& Foam::immersedCutCells::find
+(
+    const Map<Type>& values,
+    const label key,
+    const char* what,
+    const char* of
+)
+{
+    const auto iter = values.cfind(key);
+    if (!iter.found())
+    {
+        FatalErrorInFunction
+            << what << ' ' << key << " is not " << of << " of the cut cells"
+            << " (immersedCutCells::update did not list it)"
+            << abort(FatalError);
+    }
+    return *iter;
+}
+
+
 Foam::scalar Foam::immersedCutCells::triangleFraction
 (
     const FixedList<scalar, 3>& phi
@@ -269,40 +290,19 @@ void Foam::immersedCutCells::update
 
 Foam::scalar Foam::immersedCutCells::aperture(const label facei) const
 {
-    const auto iter = aperture_.cfind(facei);
-    if (!iter.found())
-    {
-        FatalErrorInFunction
-            << "face " << facei << " is not a face of the cut cells"
-            << abort(FatalError);
-    }
-    return *iter;
+    return find(aperture_, facei, "face", "a face");
 }
 
 
 Foam::vector Foam::immersedCutCells::openArea(const label facei) const
 {
-    const auto iter = openArea_.cfind(facei);
-    if (!iter.found())
-    {
-        FatalErrorInFunction
-            << "face " << facei << " is not a face of the cut cells"
-            << abort(FatalError);
-    }
-    return *iter;
+    return find(openArea_, facei, "face", "a face");
 }
 
 
 Foam::scalar Foam::immersedCutCells::centreDistance(const label celli) const
 {
-    const auto iter = cellPhi_.cfind(celli);
-    if (!iter.found())
-    {
-        FatalErrorInFunction
-            << "cell " << celli << " is not one of the cut cells"
-            << abort(FatalError);
-    }
-    return *iter;
+    return find(cellPhi_, celli, "cell", "one");
 }
 
 

@@ -378,11 +378,18 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     // in it (more than kappaMin of its volume), beside a covered cell whose
     // centre is inside (by as much: the solid is thick there; a thin solid,
     // whose cells' centres all lie outside, keeps its staircase and stays
-    // tight) is a cut cell. (With the neighbour's sign alone, the round-off
+    // tight) is a cut cell. With the neighbour's sign alone, the round-off
     // of a centre on the surface decided: at the Turek-Hron flag's tail,
-    // whose edge runs through a column of centres, one corner cell came
-    // out cut and the other covered, and the rigid flag's lift was +54 %) (Cut cells whose centre is inside, down to kappaMin,
-    // overdid the wall shear: the cylinder's c_D +3.9 % instead of -0.8 %)
+    // whose edge runs through a column of centres, one corner cell came out
+    // cut and the other covered, and the rigid flag's lift was +54 %. (Cut
+    // cells whose centre is inside, down to kappaMin, overdid the wall
+    // shear: the cylinder's c_D +3.9 % instead of -0.8 %.)
+    // The split is made in a step's first coupling iteration and held in
+    // its later ones, as the pairs are (searchPairs): re-made, a cell whose
+    // centre lies on the surface can change sides from one iteration to
+    // the next (the flag's tail on a column of centres), and the fixed
+    // point the iterations look for stops being smooth. The apertures,
+    // fractions and walls follow the surface in every iteration.
     const scalar kappaMin = 0.02;
     Map<label> index(2*covered.size());
     forAll(covered, i)
@@ -390,32 +397,38 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
         index.insert(covered[i], i);
     }
     const labelListList& cellCells = mesh_.cellCells();
-    boolList isCut(covered.size(), false);
-    forAll(covered, i)
+    if (iteration_ == 0 || isCut_.size() != covered.size())
     {
-        const label celli = covered[i];
-        if
-        (
-            cutCells_.centreDistance(celli) <= 1e-3*cbrt(mesh_.V()[celli])
-         || cutCells_.fraction()[i] <= kappaMin
-        )
+        isCut_.setSize(covered.size());
+        isCut_ = false;
+        forAll(covered, i)
         {
-            continue;
-        }
-        for (const label nbr : cellCells[celli])
-        {
-            const auto iter = index.cfind(nbr);
+            const label celli = covered[i];
             if
             (
-                iter.found()
-             && cutCells_.centreDistance(nbr) < -1e-3*cbrt(mesh_.V()[nbr])
+                cutCells_.centreDistance(celli)
+             <= 1e-3*cbrt(mesh_.V()[celli])
+             || cutCells_.fraction()[i] <= kappaMin
             )
             {
-                isCut[i] = true;
-                break;
+                continue;
+            }
+            for (const label nbr : cellCells[celli])
+            {
+                if
+                (
+                    index.found(nbr)
+                 && cutCells_.centreDistance(nbr)
+                  < -1e-3*cbrt(mesh_.V()[nbr])
+                )
+                {
+                    isCut_[i] = true;
+                    break;
+                }
             }
         }
     }
+    const boolList& isCut = isCut_;
 
     DynamicList<label> sCells, sIndex, xCells, xIndex;
     DynamicList<vector> sVelocity;
@@ -1531,10 +1544,13 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         cut_ = coeffs_.getOrDefault<bool>("cutCells", false);
         if (cut_ && (Pstream::parRun() || coupling_.solid().isDeformable()))
         {
-            // On the deformable Turek-Hron FSI1 flag the cut cells turned
-            // the early deflection to the other side (u_y(A) -0.057 mm at
-            // 0.73 s against +0.077 with the staircase and a positive
-            // reference): not understood yet (issue 10)
+            // On the deformable Turek-Hron FSI1 flag (N = 36) the tip
+            // drifted to -1.1 mm at 1.8 s (staircase -0.04 mm; reference
+            // steady +0.82) while one or two cells at its tail, whose
+            // centres lie within microns of the surface, were cut and
+            // their neighbours across the flag covered: the split is not
+            // continuous in the surface's position (src/fsiCoupling/
+            // README.md; issue 10)
             FatalIOErrorInFunction(coeffs_)
                 << "cutCells yes: only for a rigid solid in a serial run"
                 << " for now (experimental; deformable solids and parallel"

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Turek & Hron (2006) FSI benchmarks FSI1 and FSI2 (docs/references.md):
-measured values beside the references, non-zero exit if out of tolerance.
+"""Turek & Hron (2006) FSI benchmarks FSI1 and FSI2, and CFD1 (the flag held
+rigid; docs/references.md): measured values beside the references, non-zero
+exit if out of tolerance.
 
-    checkTurekHron.py [--benchmark FSI1|FSI2] [--short] [options]
+    checkTurekHron.py [--benchmark FSI1|FSI2|CFD1] [--short] [options]
 
 Reads (every start-time directory, concatenated by time; a later start
 overrides the rows of an earlier one from its start time on):
@@ -15,6 +16,11 @@ FSI1 (steady): at the end of the run u_y(A) within 5 % of 0.8209 mm, drag
 within 3 % of 14.295 N/m, and steady: u_y(A) and drag vary by less than 1 %
 over the last 10 % of the run (at least its last second); u_x(A) and lift
 reported.
+
+CFD1 (steady, the flag rigid; no displacement file needed): at the end of
+the run drag within 3 % of 14.29 N/m and lift within 5 % of 1.119 N/m, and
+steady: each varies by less than 1 % over the last 10 % of the run (at
+least its last second).
 
 FSI2 (periodic): over the last K full periods of u_y(A) (--periods, default
 3; periods between upward crossings of the mid level (max+min)/2):
@@ -71,6 +77,7 @@ DEFAULT_BENCHMARK = "FSI1"
 
 REF = {
     "FSI1": {"ux": 0.0227, "uy": 0.8209, "drag": 14.295, "lift": 0.7638},
+    "CFD1": {"drag": 14.29, "lift": 1.119},
     "FSI2": {"ux": (-14.58, 12.44, 3.8), "uy": (1.23, 80.6, 2.0),
              "drag": (208.83, 73.75, 3.8), "lift": (0.88, 234.2, 2.0)},
 }
@@ -265,6 +272,20 @@ def check_fsi1(t, ux, uy, tf, fx, fy, dz, src):
                     "of the final value, at most 1 %", var <= 0.01)
 
 
+def check_cfd1(tf, fx, fy, dz, src):
+    ref = REF["CFD1"]
+    print("Turek & Hron CFD1 (flag rigid) at t = %g s; forces from %s, per"
+          " unit depth (depth %g m)" % (tf[-1], src, dz))
+    drag, lift = fx / dz, fy / dz
+    v.relative("drag [N/m]", drag[-1], ref["drag"], 3.0)
+    v.relative("lift [N/m]", lift[-1], ref["lift"], 5.0)
+    m = tf >= min(0.9 * tf[-1], tf[-1] - 1.0)
+    for name, x in (("drag", drag), ("lift", lift)):
+        var = (x[m].max() - x[m].min()) / max(abs(x[-1]), 1e-300)
+        v.condition("%s range, last 10%% [%%]" % name, 100 * var,
+                    "of the final value, at most 1 %", var <= 0.01)
+
+
 def check_fsi2(t, ux, uy, tf, fx, fy, dz, src, K):
     ref = REF["FSI2"]
     uy_mm, ux_mm = 1e3 * uy, 1e3 * ux
@@ -369,7 +390,7 @@ def check_fsi2_short(t, uy, tf, fx, dz, args):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--benchmark", choices=("FSI1", "FSI2"),
+    p.add_argument("--benchmark", choices=("FSI1", "FSI2", "CFD1"),
                    default=DEFAULT_BENCHMARK)
     p.add_argument("--case", default=".", help="case directory")
     p.add_argument("--depth", type=float, default=None,
@@ -396,8 +417,14 @@ def main():
         p.error("--growth must be at least 1")
 
     dz = read_depth(args.case, args.depth)
-    t, ux, uy = read_displacement(args.case, args.probe)
     tf, fx, fy, src = read_forces(args.case)
+    if args.benchmark == "CFD1":
+        if args.short:
+            sys.exit("--short is for FSI2")
+        check_cfd1(tf, fx, fy, dz, src)
+        v.finish()
+        return
+    t, ux, uy = read_displacement(args.case, args.probe)
     if args.benchmark == "FSI1":
         if args.short:
             sys.exit("--short is for FSI2")
