@@ -463,16 +463,6 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
         cutWall_[j] = Zero;
         cutExtra_[j] = 0;
         cutFraction_[j] = cutCells_.fraction()[i];
-        vector wallTotal(Zero);
-        for (const label facei : mesh_.cells()[celli])
-        {
-            if (mesh_.isInternalFace(facei))
-            {
-                wallTotal -= cutCells_.aperture(facei)
-                   *(own[facei] == celli ? Sf[facei] : -Sf[facei]);
-            }
-        }
-        const scalar hc = cbrt(mesh_.V()[celli]);
         if (cutDistance_[j] <= 0)
         {
             // centre inside: the distance of the wall shear is that of the
@@ -483,11 +473,20 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
             // sees u_s at the covered cell's centre (no wall between two
             // centres inside for the ghost). Immersed cylinder at 20 cells
             // across: without it c_D +2.5 to +4.0 % (see fluidForce)
+            vector wallTotal(Zero);
+            for (const label facei : mesh_.cells()[celli])
+            {
+                if (mesh_.isInternalFace(facei))
+                {
+                    wallTotal -= cutCells_.aperture(facei)
+                       *(own[facei] == celli ? Sf[facei] : -Sf[facei]);
+                }
+            }
             cutDistance_[j] = max
             (
                 0.5*cutCells_.fraction()[i]*mesh_.V()[celli]
                /max(mag(wallTotal), SMALL),
-                0.05*hc
+                0.05*cbrt(mesh_.V()[celli])
             );
             for (const label facei : mesh_.cells()[celli])
             {
