@@ -265,6 +265,46 @@ Foam::scalar Foam::cbsProjectionFluid::courantNumber() const
 }
 
 
+Foam::scalar Foam::cbsProjectionFluid::diffusionNumber() const
+{
+    // Di = 0.5 dt max_P sum_f nu_f |S_f| deltaCoeff_f / V_P: the viscous
+    // counterpart of courantNumber() (boundary faces count with their
+    // deltaCoeffs, the centre-to-face distance; empty patches have none)
+    const volScalarField nu(laminarTransport_.nu());
+    const scalarField sumD
+    (
+        fvc::surfaceSum
+        (
+            mesh_.magSf()*mesh_.deltaCoeffs()*fvc::interpolate(nu)
+        )().primitiveField()
+    );
+    return 0.5*gMax(sumD/mesh_.V().field())*mesh_.time().deltaTValue();
+}
+
+
+Foam::scalar Foam::cbsProjectionFluid::diffusionLimit
+(
+    const scalar DiNum
+) const
+{
+    const dictionary& controlDict = mesh_.time().controlDict();
+    if (!controlDict.found("maxDi"))
+    {
+        return 1;
+    }
+    const scalar maxDi = controlDict.get<scalar>("maxDi");
+    if (maxDi <= 0)
+    {
+        FatalIOErrorInFunction(controlDict)
+            << "maxDi " << maxDi << " in " << controlDict.name()
+            << " must be positive (the largest cell diffusion number,"
+            << " 0.5 dt sum_f nu |S_f|/|d_f| / V; 1 keeps nu dt/h^2 at 0.5"
+            << " in 2D), or remove the entry" << exit(FatalIOError);
+    }
+    return min(1.0, maxDi/(DiNum + VSMALL));
+}
+
+
 void Foam::cbsProjectionFluid::setInitialDeltaT()
 {
     const Time& runTime = mesh_.time();
@@ -289,6 +329,10 @@ void Foam::cbsProjectionFluid::setInitialDeltaT()
                 )
             );
         }
+        const_cast<Time&>(runTime).setDeltaT
+        (
+            diffusionLimit(diffusionNumber())*runTime.deltaTValue()
+        );
     }
 }
 
@@ -313,6 +357,15 @@ void Foam::cbsProjectionFluid::adjustDeltaT()
             min(min(maxDeltaTFact, 1.0 + 0.1*maxDeltaTFact), 1.2);
 
         runTime.setDeltaT(min(deltaTFact*runTime.deltaTValue(), maxDeltaT));
+        if (controlDict.found("maxDi"))
+        {
+            const scalar DiNum = diffusionNumber();
+            Info<< "Diffusion Number max: " << DiNum << endl;
+            runTime.setDeltaT
+            (
+                diffusionLimit(DiNum)*runTime.deltaTValue()
+            );
+        }
         Info<< "deltaT = " << runTime.deltaTValue() << endl;
     }
 }
