@@ -360,11 +360,9 @@ void Foam::cbsProjectionFluid::adjustDeltaT()
         if (controlDict.found("maxDi"))
         {
             const scalar DiNum = diffusionNumber();
-            Info<< "Diffusion Number max: " << DiNum << endl;
-            runTime.setDeltaT
-            (
-                diffusionLimit(DiNum)*runTime.deltaTValue()
-            );
+            const scalar factor = diffusionLimit(DiNum);
+            runTime.setDeltaT(factor*runTime.deltaTValue());
+            Info<< "Diffusion Number max: " << factor*DiNum << endl;
         }
         Info<< "deltaT = " << runTime.deltaTValue() << endl;
     }
