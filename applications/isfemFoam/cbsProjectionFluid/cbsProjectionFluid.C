@@ -329,10 +329,13 @@ void Foam::cbsProjectionFluid::setInitialDeltaT()
                 )
             );
         }
-        const_cast<Time&>(runTime).setDeltaT
-        (
-            diffusionLimit(diffusionNumber())*runTime.deltaTValue()
-        );
+        if (controlDict.found("maxDi"))
+        {
+            const_cast<Time&>(runTime).setDeltaT
+            (
+                diffusionLimit(diffusionNumber())*runTime.deltaTValue()
+            );
+        }
     }
 }
 
