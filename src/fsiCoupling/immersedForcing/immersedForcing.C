@@ -883,10 +883,9 @@ void Foam::fv::immersedForcing::fluidForce
             // the cell's momentum row holds its whole volume, and the
             // penalty also accelerates the fluid standing in for the solid
             // part, rho (1 - kappa) V du_s/dt, which the solid, with its
-            // own mass, must not feel again (the internal-fluid term of
-            // Uhlmann 2005, J Comput Phys 209:448, Eq. 17: F = -rho int f
-            // dV + rho d/dt int_solid u dV). Without it the FSI2 flag
-            // flapped at 1.912 Hz against the staircase's 1.950 (N = 24)
+            // own mass, must not feel again (the internal-fluid term of the
+            // hydrodynamic force on a particle, Uhlmann 2005, J Comput Phys
+            // 209: F = -rho int f dV + rho d/dt int_solid u dV)
             const vectorField us0
             (
                 stepDeltaT_ > 0 && velocities0_.size() == solid.nPoints()
