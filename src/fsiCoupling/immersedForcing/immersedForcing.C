@@ -414,11 +414,6 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     // fractions and walls of aperture cut cells follow the surface in
     // every iteration (volume fractions are held, above).
     const scalar kappaMin = 0.02;
-    Map<label> index(2*covered.size());
-    forAll(covered, i)
-    {
-        index.insert(covered[i], i);
-    }
     if (newSplit)
     {
         // per cell: 0 not covered, 1 covered and full (fluid fraction at
@@ -518,6 +513,11 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     }
 
     // their faces to fluid and cut cells
+    Map<label> index(2*covered.size());
+    forAll(covered, i)
+    {
+        index.insert(covered[i], i);
+    }
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const vectorField& Sf = mesh_.faceAreas();
@@ -1470,39 +1470,13 @@ void Foam::fv::immersedForcing::constrain
         // there, not in diag(), and without them the penalty of a cut
         // cell beside it differed from the serial run's (DFG cylinder, 10
         // cells across, processor boundary through it: F_x 5e-4 off)
-        scalarField A(cutCellList_.size());
-        {
-            Map<label> cutIndex(2*cutCellList_.size());
-            forAll(cutCellList_, j)
-            {
-                A[j] = diag[cutCellList_[j]];
-                cutIndex.insert(cutCellList_[j], j);
-            }
-            forAll(eqn.internalCoeffs(), patchi)
-            {
-                const Field<vector>& ic = eqn.internalCoeffs()[patchi];
-                const labelUList& faceCells =
-                    mesh_.boundary()[patchi].faceCells();
-                if (ic.size() != faceCells.size())
-                {
-                    continue;   // empty
-                }
-                forAll(faceCells, facei)
-                {
-                    const auto iter = cutIndex.cfind(faceCells[facei]);
-                    if (iter.found())
-                    {
-                        A[*iter] += cmptAv(ic[facei]);
-                    }
-                }
-            }
-        }
+        const scalarField A(eqn.D());
         cutPenalty_.setSize(cutCellList_.size());
         forAll(cutCellList_, j)
         {
             const label celli = cutCellList_[j];
             const scalar kappa = min(max(cutFraction_[j], 0.02), 1.0);
-            const scalar K = (1 - kappa)/kappa*A[j];
+            const scalar K = (1 - kappa)/kappa*A[celli];
             cutPenalty_[j] = K;
             diag[celli] += K;
             source[celli] += K*cutVelocity_[j];
