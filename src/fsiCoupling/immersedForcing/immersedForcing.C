@@ -385,7 +385,8 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     // penalty's fixed point stays smooth in the force; a surface at rest
     // keeps its cut cells (the rigid CFD1 flag: 0.054 s per step)
     const bool newSplit = iteration_ == 0 || isCut_.size() != covered.size();
-    if (!cutCellsCurrent(search.points()))
+    const bool newGeometry = !cutCellsCurrent(search.points());
+    if (newGeometry)
     {
         cutCells_.update(search(), covered);
         cutSurfacePoints_ = search.points();
@@ -502,6 +503,10 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
         }
         cutFaceList_.clear();
         cutFaceCoeff_.clear();
+        if (interpolation_)
+        {
+            updateWallInterpolation(newGeometry, search);
+        }
         if (debug)
         {
             Info<< "immersedForcing: " << cutCellList_.size()
@@ -685,6 +690,65 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
 }
 
 
+void Foam::fv::immersedForcing::updateWallInterpolation
+(
+    const bool newGeometry,
+    const surfaceSearch& search
+)
+{
+    if (newGeometry || !wallInterpolationCurrent_)
+    {
+        wallInterpolationCurrent_ = true;
+        // Fadlun et al. (2000) in 1D: the cells whose centre is inside
+        // hold u_s, the first cell outside interpolates between its
+        // outer neighbour and the wall (immersedWallInterpolation)
+        cutInside_.setSize(cutCellList_.size());
+        DynamicList<label> candidates(2*cutCellList_.size());
+        forAll(cutCellList_, j)
+        {
+            cutInside_[j] = cutCells_.centreDistance(cutCellList_[j]) <= 0;
+            if (!cutInside_[j])
+            {
+                candidates.append(cutCellList_[j]);
+            }
+        }
+        const labelList& covered = coupling_.pairs().coveredCells();
+        boolList isCovered(mesh_.nCells(), false);
+        UIndirectList<bool>(isCovered, covered) = true;
+        boolList added(mesh_.nCells(), false);
+        const labelUList& own = mesh_.faceOwner();
+        const labelUList& nei = mesh_.faceNeighbour();
+        for (const label celli : covered)
+        {
+            for (const label facei : mesh_.cells()[celli])
+            {
+                if (!mesh_.isInternalFace(facei))
+                {
+                    continue;
+                }
+                const label other =
+                    own[facei] == celli ? nei[facei] : own[facei];
+                if (!isCovered[other] && !added[other])
+                {
+                    added[other] = true;
+                    candidates.append(other);
+                }
+            }
+        }
+        wallInterpolation_.update(search(), surfacePoints_, candidates);
+        if (debug)
+        {
+            Info<< "immersedForcing: " << wallInterpolation_.cells().size()
+                << " forcing cells of " << candidates.size()
+                << " candidates, "
+                << std::count(cutInside_.begin(), cutInside_.end(), true)
+                << " cut cells held" << endl;
+        }
+    }
+    wallInterpolation_.setVelocity(coupling_.solid().velocities());
+}
+
+
 bool Foam::fv::immersedForcing::neighbourHas
 (
     const label celli,
@@ -796,6 +860,7 @@ bool Foam::fv::immersedForcing::needsOctree
     // cells of the projection must be the pairs')
     return
         (cut_ && (ghostWall_ || !cutCellsCurrent(points)))
+     || (interpolation_ && !wallInterpolationCurrent_)
      || solidFraction
      || (
             ghostWall_
@@ -901,8 +966,12 @@ void Foam::fv::immersedForcing::fluidForce
                 const scalar K =
                     j < cutPenalty_.size() ? cutPenalty_[j] : 0;
                 tp[i] = rhoFluid_*K*(U[celli] - cutVelocity_[j]);
-                fictitiousInertia[j] = rhoFluid_
-                   *(1 - cutFraction_[j])*mesh_.V()[celli]
+                // (cutCells interpolation: a cell whose centre is outside
+                // is a fluid cell, with no fictitious fluid)
+                fictitiousInertia[j] =
+                    interpolation_ && !cutInside_[j]
+                  ? Zero
+                  : rhoFluid_*(1 - cutFraction_[j])*mesh_.V()[celli]
                    *(cutVelocity_[j] - us0[i])*rDt;
             }
         }
@@ -951,6 +1020,15 @@ void Foam::fv::immersedForcing::fluidForce
     }
     vectorField& f = solid.externalForce();
     f = spread(t);
+    if (interpolation_)
+    {
+        // the forcing cells' penalty reaction, to the nodes of their
+        // nearest surface points (the fluid feels it back: cutForce_)
+        vectorField fw(f.size(), Zero);
+        cutForce_ += wallInterpolation_.addForce(U, rhoFluid_, fw);
+        reduce(fw, sumOp<vectorField>());
+        f += fw;
+    }
     if (semiImplicit_)
     {
         // the solid's predictor felt the pressure force of p^n: correct
@@ -1261,6 +1339,9 @@ Foam::fv::immersedForcing::immersedForcing
     cutCells_(mesh),
     cut_(false),
     volumeFraction_(false),
+    interpolation_(false),
+    wallInterpolation_(mesh),
+    wallInterpolationCurrent_(false),
     cutForce_(Zero),
     source_(Zero),
     slip_(0),
@@ -1471,15 +1552,35 @@ void Foam::fv::immersedForcing::constrain
         // cell beside it differed from the serial run's (DFG cylinder, 10
         // cells across, processor boundary through it: F_x 5e-4 off)
         const scalarField A(eqn.D());
+        const scalar kappaMin = 0.02;
+        const scalar KmaxByA = (1 - kappaMin)/kappaMin;
         cutPenalty_.setSize(cutCellList_.size());
         forAll(cutCellList_, j)
         {
             const label celli = cutCellList_[j];
-            const scalar kappa = min(max(cutFraction_[j], 0.02), 1.0);
-            const scalar K = (1 - kappa)/kappa*A[celli];
+            const scalar kappa = min(max(cutFraction_[j], kappaMin), 1.0);
+            // cutCells interpolation: a cut cell whose centre is inside
+            // is held (the wall beyond its centre), one whose centre is
+            // outside is a forcing cell of wallInterpolation_ (below)
+            const scalar K =
+                interpolation_
+              ? (cutInside_[j] ? KmaxByA*A[celli] : 0)
+              : (1 - kappa)/kappa*A[celli];
             cutPenalty_[j] = K;
             diag[celli] += K;
             source[celli] += K*cutVelocity_[j];
+        }
+        if (interpolation_)
+        {
+            const singlePhaseTransportModel& transport =
+                mesh_.lookupObject<singlePhaseTransportModel>
+                (
+                    "transportProperties"
+                );
+            wallInterpolation_.constrain
+            (
+                eqn, transport.nu()().primitiveField(), KmaxByA*A
+            );
         }
         return;
     }
@@ -1888,12 +1989,22 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         (
             coeffs_.getOrDefault<word>("cutCells", "no")
         );
-        volumeFraction_ = (cutCells == "volumeFraction");
+        interpolation_ = (cutCells == "interpolation");
+        volumeFraction_ = interpolation_ || (cutCells == "volumeFraction");
         const Switch cutSwitch(cutCells, true);
         if (!volumeFraction_ && !cutSwitch.valid())
         {
             FatalIOErrorInFunction(coeffs_)
-                << "cutCells " << cutCells << " is not no, yes or"
+                << "cutCells " << cutCells << " is not no, yes,"
+                << " volumeFraction or interpolation" << exit(FatalIOError);
+        }
+        if (interpolation_ && Pstream::parRun())
+        {
+            // the forcing cells are found from a rank's own cells' face
+            // neighbours: not yet across processor faces
+            FatalIOErrorInFunction(coeffs_)
+                << "cutCells interpolation: serial runs only for now"
+                << " (experimental); in parallel use cutCells"
                 << " volumeFraction" << exit(FatalIOError);
         }
         cut_ = volumeFraction_ || bool(cutSwitch);
@@ -1905,7 +2016,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
             if (coeffs_.found("wall") && ghostWall_)
             {
                 FatalIOErrorInFunction(coeffs_)
-                    << "wall ghost and cutCells volumeFraction: the"
+                    << "wall ghost and cutCells " << cutCells << ": the"
                     << " volume-fraction cut cells are the wall's layer;"
                     << " remove the entry wall or set it to staircase"
                     << exit(FatalIOError);
