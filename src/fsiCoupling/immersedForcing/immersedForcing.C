@@ -713,11 +713,25 @@ void Foam::fv::immersedForcing::updateWallInterpolation
             }
         }
         const labelList& covered = coupling_.pairs().coveredCells();
-        boolList isCovered(mesh_.nCells(), false);
-        UIndirectList<bool>(isCovered, covered) = true;
+        labelList isCovered(mesh_.nCells(), 0);
+        UIndirectList<label>(isCovered, covered) = 1;
         boolList added(mesh_.nCells(), false);
         const labelUList& own = mesh_.faceOwner();
         const labelUList& nei = mesh_.faceNeighbour();
+        // a cell beside a covered cell on another rank (processor faces)
+        {
+            labelList nbrCovered;
+            syncTools::swapBoundaryCellList(mesh_, isCovered, nbrCovered);
+            forAll(nbrCovered, bFacei)
+            {
+                const label celli = own[mesh_.nInternalFaces() + bFacei];
+                if (nbrCovered[bFacei] && !isCovered[celli] && !added[celli])
+                {
+                    added[celli] = true;
+                    candidates.append(celli);
+                }
+            }
+        }
         for (const label celli : covered)
         {
             for (const label facei : mesh_.cells()[celli])
@@ -1997,15 +2011,6 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
             FatalIOErrorInFunction(coeffs_)
                 << "cutCells " << cutCells << " is not no, yes,"
                 << " volumeFraction or interpolation" << exit(FatalIOError);
-        }
-        if (interpolation_ && Pstream::parRun())
-        {
-            // the forcing cells are found from a rank's own cells' face
-            // neighbours: not yet across processor faces
-            FatalIOErrorInFunction(coeffs_)
-                << "cutCells interpolation: serial runs only for now"
-                << " (experimental); in parallel use cutCells"
-                << " volumeFraction" << exit(FatalIOError);
         }
         cut_ = volumeFraction_ || bool(cutSwitch);
         if (volumeFraction_)
