@@ -696,17 +696,20 @@ void Foam::fv::immersedForcing::updateWallInterpolation
     const surfaceSearch& search
 )
 {
+    // Fadlun et al. (2000) in 1D: the cells whose centre is inside hold
+    // u_s, the first cell outside interpolates between its outer
+    // neighbour and the wall (immersedWallInterpolation)
+    cutInside_.setSize(cutCellList_.size());
+    forAll(cutCellList_, j)
+    {
+        cutInside_[j] = cutCells_.centreDistance(cutCellList_[j]) <= 0;
+    }
     if (newGeometry || !wallInterpolationCurrent_)
     {
         wallInterpolationCurrent_ = true;
-        // Fadlun et al. (2000) in 1D: the cells whose centre is inside
-        // hold u_s, the first cell outside interpolates between its
-        // outer neighbour and the wall (immersedWallInterpolation)
-        cutInside_.setSize(cutCellList_.size());
         DynamicList<label> candidates(2*cutCellList_.size());
         forAll(cutCellList_, j)
         {
-            cutInside_[j] = cutCells_.centreDistance(cutCellList_[j]) <= 0;
             if (!cutInside_[j])
             {
                 candidates.append(cutCellList_[j]);
