@@ -814,13 +814,13 @@ void Foam::fv::immersedForcing::updateSolidFraction
         cells.insert(cellCells[celli]);
     }
     const labelList cellList(cells.sortedToc());
-    cutCells_.update(search, cellList);
+    fractionCells_.update(search, cellList);
 
     scalarField& f = solidFraction_.primitiveFieldRef();
     f = 0;
     forAll(cellList, i)
     {
-        f[cellList[i]] = 1 - cutCells_.fraction()[i];
+        f[cellList[i]] = 1 - fractionCells_.fraction()[i];
     }
     solidFraction_.correctBoundaryConditions();
 }
@@ -1354,6 +1354,7 @@ Foam::fv::immersedForcing::immersedForcing
     force_(Zero),
     ghostWall_(true),
     cutCells_(mesh),
+    fractionCells_(mesh),
     cut_(false),
     volumeFraction_(false),
     interpolation_(false),
