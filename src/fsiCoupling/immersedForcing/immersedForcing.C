@@ -438,30 +438,49 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
                  && neighbourHas(covered[i], state, nbrState, 1);
             }
         }
-        // and, with volume-fraction cut cells, a second layer: a covered
-        // cell with some fluid beside such a cut cell. Where a sloped
-        // surface enters a new row of cells, the cell it first touches
-        // (nearly all fluid) lies beside a cell the surface has not yet
-        // filled, and without this layer it was covered whole: on the
-        // deformable Turek-Hron flag (N = 44) one cell at the tail's upper
-        // edge was covered and uncovered every other step once u_y(A)
-        // reached 0.2 h, and the lift on the flag alternated by +-0.5 N/m.
-        // A thin solid fills no cell, so it keeps its staircase.
+        // and, with volume-fraction cut cells, layer after layer: a
+        // covered cell with some fluid beside a cut cell, until none is
+        // left. Where a sloped surface enters a new row of cells, the cell
+        // it first touches (nearly all fluid) lies beside a cell the
+        // surface has not yet filled, and covered whole it puts the wall
+        // on its faces: on the deformable Turek-Hron flag (N = 44) one
+        // cell at the tail's upper edge was covered and uncovered every
+        // other step once u_y(A) reached 0.2 h, and the lift on the flag
+        // alternated by +-0.5 N/m (with a second layer only, 25 Nov 2026);
+        // on the flapping FSI2 flag (N = 24, interpolated cut cells) such
+        // cells two and more layers out, 2 to 6 of them beside fluid cells
+        // at a time, carried the drag's spikes (up to +150 N/m in a step,
+        // as their faces' staircase pressure came and went). A thin solid
+        // fills no cell, so it keeps its staircase.
         if (volumeFraction_)
         {
-            labelList firstLayer(mesh_.nCells(), 0);
-            forAll(covered, i)
+            // (every rank makes the same passes: the loop ends only on
+            // the reduced flag, after a pass that grew no rank's cells)
+            labelList layer(mesh_.nCells(), 0);
+            while (true)
             {
-                firstLayer[covered[i]] = isCut_[i] ? 1 : 0;
-            }
-            labelList nbrFirst;
-            syncTools::swapBoundaryCellList(mesh_, firstLayer, nbrFirst);
-            forAll(covered, i)
-            {
-                if (!isCut_[i] && state[covered[i]] == 2)
+                forAll(covered, i)
                 {
-                    isCut_[i] =
-                        neighbourHas(covered[i], firstLayer, nbrFirst, 1);
+                    layer[covered[i]] = isCut_[i] ? 1 : 0;
+                }
+                labelList nbrLayer;
+                syncTools::swapBoundaryCellList(mesh_, layer, nbrLayer);
+                bool grown = false;
+                forAll(covered, i)
+                {
+                    if
+                    (
+                        !isCut_[i] && state[covered[i]] == 2
+                     && neighbourHas(covered[i], layer, nbrLayer, 1)
+                    )
+                    {
+                        isCut_[i] = true;
+                        grown = true;
+                    }
+                }
+                if (!returnReduce(grown, orOp<bool>()))
+                {
+                    break;
                 }
             }
         }
