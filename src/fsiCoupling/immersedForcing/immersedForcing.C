@@ -448,7 +448,7 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
         // other step once u_y(A) reached 0.2 h, and the lift on the flag
         // alternated by +-0.5 N/m (with a second layer only, 25 Nov 2026);
         // on the flapping FSI2 flag (N = 24, interpolated cut cells) such
-        // cells two and more layers out, 2 to 6 of them beside fluid cells
+        // cells beyond the second layer, 2 to 6 of them beside fluid cells
         // at a time, carried the drag's spikes (up to +150 N/m in a step,
         // as their faces' staircase pressure came and went). A thin solid
         // fills no cell, so it keeps its staircase.
