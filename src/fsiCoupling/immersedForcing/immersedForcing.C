@@ -715,9 +715,10 @@ void Foam::fv::immersedForcing::updateWallInterpolation
     const surfaceSearch& search
 )
 {
-    // Fadlun et al. (2000) in 1D: the cells whose centre is inside hold
-    // u_s, the first cell outside interpolates between its outer
-    // neighbour and the wall (immersedWallInterpolation)
+    // Fadlun et al. (2000): the cells whose centre is inside hold u_s,
+    // those outside within a cell's width of the surface are forced
+    // toward the interpolation between the wall and their outer
+    // neighbour (immersedWallInterpolation)
     cutInside_.setSize(cutCellList_.size());
     forAll(cutCellList_, j)
     {
@@ -1609,15 +1610,7 @@ void Foam::fv::immersedForcing::constrain
         }
         if (interpolation_)
         {
-            const singlePhaseTransportModel& transport =
-                mesh_.lookupObject<singlePhaseTransportModel>
-                (
-                    "transportProperties"
-                );
-            wallInterpolation_.constrain
-            (
-                eqn, transport.nu()().primitiveField(), KmaxByA*A
-            );
+            wallInterpolation_.constrain(eqn, A, KmaxByA);
         }
         return;
     }

@@ -6,6 +6,7 @@
 #include "fvMatrices.H"
 #include "triSurface.H"
 #include "triangle.H"
+#include "volFields.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -24,6 +25,8 @@ void Foam::immersedWallInterpolation::clear()
     area_.clear();
     nodes_.clear();
     weights_.clear();
+    face_.clear();
+    weight_.clear();
     velocity_.clear();
     penalty_.clear();
 }
@@ -61,6 +64,13 @@ void Foam::immersedWallInterpolation::update
     DynamicList<scalar> area(candidates.size());
     DynamicList<FixedList<label, 3>> nodes(candidates.size());
     DynamicList<FixedList<scalar, 3>> weights(candidates.size());
+    DynamicList<label> faces(candidates.size());
+    DynamicList<scalar> weightN(candidates.size());
+    const labelUList& own = mesh_.faceOwner();
+    const labelUList& nei = mesh_.faceNeighbour();
+    const polyBoundaryMesh& patches = mesh_.boundaryMesh();
+    // the coupled patches' cell-to-cell vectors (fvPatch::delta), as needed
+    PtrList<vectorField> deltas(patches.size());
     forAll(candidates, i)
     {
         if (!nearest[i].hit())
@@ -103,6 +113,49 @@ void Foam::immersedWallInterpolation::update
             w[k] /= max(sum, VSMALL);
             nd[k] = surfacePoints[t[k]];
         }
+        // the outer neighbour N: the face neighbour whose centre lies most
+        // nearly along n (a coupled face's neighbour across it: fvPatch::
+        // delta is the vector between the two cells' centres there)
+        label best = -1;
+        scalar bestCos = 0;
+        scalar bestS = 0;
+        for (const label facei : mesh_.cells()[celli])
+        {
+            vector delta;
+            if (mesh_.isInternalFace(facei))
+            {
+                const label other =
+                    own[facei] == celli ? nei[facei] : own[facei];
+                delta = C[other] - C[celli];
+            }
+            else
+            {
+                const label patchi = patches.whichPatch(facei);
+                if (!patches[patchi].coupled())
+                {
+                    continue;
+                }
+                if (!deltas.set(patchi))
+                {
+                    deltas.set
+                    (
+                        patchi,
+                        mesh_.boundary()[patchi].delta().ptr()
+                    );
+                }
+                delta = deltas[patchi][facei - patches[patchi].start()];
+            }
+            const scalar s = delta & n;
+            const scalar c = s/max(mag(delta), VSMALL);
+            if (s > 0 && c > bestCos)
+            {
+                best = facei;
+                bestCos = c;
+                bestS = s;
+            }
+        }
+        faces.append(best);
+        weightN.append(best >= 0 ? d/(d + bestS) : 0);
         cells.append(celli);
         distance.append(d);
         area.append(G);
@@ -114,6 +167,8 @@ void Foam::immersedWallInterpolation::update
     area_.transfer(area);
     nodes_.transfer(nodes);
     weights_.transfer(weights);
+    face_.transfer(faces);
+    weight_.transfer(weightN);
     velocity_.setSize(cells_.size(), Zero);
     penalty_.setSize(cells_.size(), 0);
 }
@@ -138,30 +193,106 @@ void Foam::immersedWallInterpolation::setVelocity
 void Foam::immersedWallInterpolation::constrain
 (
     fvMatrix<vector>& eqn,
-    const scalarField& nu,
-    const scalarField& Kmax
+    const scalarField& A,
+    const scalar KmaxByA
 )
 {
     scalarField& diag = eqn.diag();
     Field<vector>& source = eqn.source();
+    // the coefficient of u_N in the row of c alone: the matrix made
+    // asymmetric (a symmetric one shares upper for both rows)
+    scalarField& lower = eqn.lower();
+    scalarField& upper = eqn.upper();
+    const labelUList& own = mesh_.faceOwner();
+    const polyBoundaryMesh& patches = mesh_.boundaryMesh();
     const scalarField& V = mesh_.V();
     penalty_.setSize(cells_.size());
     forAll(cells_, i)
     {
         const label celli = cells_[i];
-        // K = (h_n/d - 1) D_n, h_n = V/G, D_n = nu G/h_n = nu G^2/V
-        // (class description; Fadlun et al. 2000's interpolation)
-        const scalar G = area_[i];
-        const scalar hn = V[celli]/G;
-        const scalar Dn = nu[celli]*G*G/V[celli];
+        // K = (h_n/d - 1) A, h_n = V/G (class description)
+        const scalar hn = V[celli]/area_[i];
+        const scalar Kmax = KmaxByA*A[celli];
         const scalar K =
             distance_[i] > 0
-          ? min((hn/distance_[i] - 1)*Dn, Kmax[celli])
-          : Kmax[celli];
+          ? min((hn/distance_[i] - 1)*A[celli], Kmax)
+          : Kmax;
         penalty_[i] = K;
         diag[celli] += K;
-        source[celli] += K*velocity_[i];
+        // K u_t = K (1 - w) u_s + K w u_N: u_N implicit
+        const scalar w = weight_[i];
+        source[celli] += K*(1 - w)*velocity_[i];
+        const label facei = face_[i];
+        if (facei < 0 || w <= 0)
+        {
+            continue;
+        }
+        if (mesh_.isInternalFace(facei))
+        {
+            if (own[facei] == celli)
+            {
+                upper[facei] -= K*w;
+            }
+            else
+            {
+                lower[facei] -= K*w;
+            }
+        }
+        else
+        {
+            // a coupled face: the solver and fvMatrix::H take
+            // -boundaryCoeffs u_N into the row (lduMatrix interfaces)
+            const label patchi = patches.whichPatch(facei);
+            eqn.boundaryCoeffs()[patchi][facei - patches[patchi].start()]
+                += vector::one*K*w;
+        }
     }
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::immersedWallInterpolation::target
+(
+    const volVectorField& U
+) const
+{
+    const labelUList& own = mesh_.faceOwner();
+    const labelUList& nei = mesh_.faceNeighbour();
+    const polyBoundaryMesh& patches = mesh_.boundaryMesh();
+    // the neighbours' values across the coupled patches
+    PtrList<vectorField> nbr(patches.size());
+    forAll(patches, patchi)
+    {
+        if (patches[patchi].coupled())
+        {
+            nbr.set
+            (
+                patchi,
+                U.boundaryField()[patchi].patchNeighbourField().ptr()
+            );
+        }
+    }
+    auto tu = tmp<vectorField>::New(velocity_);
+    vectorField& ut = tu.ref();
+    forAll(cells_, i)
+    {
+        const label facei = face_[i];
+        if (facei < 0)
+        {
+            continue;
+        }
+        vector uN;
+        if (mesh_.isInternalFace(facei))
+        {
+            uN = U[own[facei] == cells_[i] ? nei[facei] : own[facei]];
+        }
+        else
+        {
+            const label patchi = patches.whichPatch(facei);
+            uN = nbr[patchi][facei - patches[patchi].start()];
+        }
+        ut[i] = (1 - weight_[i])*velocity_[i] + weight_[i]*uN;
+    }
+    return tu;
 }
 
 
@@ -173,10 +304,11 @@ Foam::vector Foam::immersedWallInterpolation::addForce
 ) const
 {
     vector total(Zero);
+    const vectorField ut(target(U));
     forAll(cells_, i)
     {
         const scalar K = i < penalty_.size() ? penalty_[i] : 0;
-        const vector F(rho*K*(U[cells_[i]] - velocity_[i]));
+        const vector F(rho*K*(U[cells_[i]] - ut[i]));
         for (label k = 0; k < 3; ++k)
         {
             nodeForce[nodes_[i][k]] += weights_[i][k]*F;

@@ -24,6 +24,11 @@ Description
                        solid moves, against a whole fill each step
         -test outside  the solid shifted by -shift (x y z): must stop with
                        a FatalError
+        -test wallInterp  the forcing of cutCells interpolation
+                       (immersedWallInterpolation) beside a tilted plane:
+                       a velocity linear in the distance to the wall is
+                       Fadlun's value in every forcing cell (the forcing's
+                       residual and reaction vanish), a quadratic one not
 
     Prints 'measured ... reference ... tolerance' lines and 'PASS'/'FAIL';
     exits non-zero on FAIL.
@@ -46,6 +51,8 @@ Description
 #include "immersedCutCells.H"
 #include "triSurface.H"
 #include "triSurfaceSearch.H"
+#include "immersedWallInterpolation.H"
+#include "fvMatrices.H"
 
 using namespace Foam;
 
@@ -189,7 +196,7 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
-    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | enclosed | outside | cutCells");
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | coverage | coupling | enclosed | outside | cutCells | wallInterp");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -1296,6 +1303,129 @@ int main(int argc, char *argv[])
                 eV[1] < 0.02);
             check("sphere R = 4 h: wall area (relative error)", eA[1], 0,
                 0.02, eA[1] < 0.02);
+        }
+    }
+    else if (test == "wallInterp")
+    {
+        // The tilted plane z = z0 + s (x - 0.5), the top of a large prism
+        // (the solid below it); the fluid cells whose centre is above it
+        // are the candidates. The solid moves at u_s (its surface points'
+        // velocity); the fluid's velocity u = u_s + g(dist) (1, 0.5, 0),
+        // dist the distance of the centre to the plane. For g linear
+        // (g = dist) Fadlun's value u_t = u_s + (u_N - u_s) d/(d + s) is
+        // the cell's own velocity wherever the outer neighbour N lies
+        // (dist_N = d + s exactly), so the forcing K (u_t - u) and its
+        // reaction vanish; for g = dist^2 they do not (negative control).
+        const scalar z0 = 0.47, sl = 0.3;
+        pointField pts(8);
+        label k = 0;
+        for (const scalar x : {-1.0, 2.0})
+        for (const scalar y : {-1.0, 2.0})
+        {
+            pts[k++] = point(x, y, -1);
+            pts[k++] = point(x, y, z0 + sl*(x - 0.5));
+        }
+        List<labelledTri> tris
+        ({
+            labelledTri(0, 4, 6, 0), labelledTri(0, 6, 2, 0),
+            labelledTri(1, 3, 7, 0), labelledTri(1, 7, 5, 0),
+            labelledTri(0, 1, 5, 0), labelledTri(0, 5, 4, 0),
+            labelledTri(2, 6, 7, 0), labelledTri(2, 7, 3, 0),
+            labelledTri(0, 2, 3, 0), labelledTri(0, 3, 1, 0),
+            labelledTri(4, 5, 7, 0), labelledTri(4, 7, 6, 0)
+        });
+        scalar prismVolume;
+        const triSurface surf(closedSurface(pts, tris, prismVolume));
+        const triSurfaceSearch search(surf);
+        const vector n = vector(-sl, 0, 1)/std::sqrt(1 + sl*sl);
+        auto dist = [&](const point& x)
+        {
+            return (x - point(0.5, 0, z0)) & n;
+        };
+        DynamicList<label> candidates;
+        forAll(C, celli)
+        {
+            if (dist(C[celli]) > 0)
+            {
+                candidates.append(celli);
+            }
+        }
+        immersedWallInterpolation wall(mesh);
+        wall.update(search, identity(surf.points().size()), candidates);
+        const labelList& cells = wall.cells();
+        const vector us(0.2, -0.1, 0.05);
+        wall.setVelocity(vectorField(surf.points().size(), us));
+        Info<< "tilted plane: " << candidates.size() << " cells above it, "
+            << cells.size() << " forcing cells" << endl;
+        check("forcing cells found", cells.size(), 1, 0, cells.size() > 0);
+
+        const scalarField A(mesh.nCells(), 1.0);
+        const scalar KmaxByA = 49;
+        for (const label power : {1, 2})
+        {
+            volVectorField U
+            (
+                IOobject("U", runTime.timeName(), mesh),
+                mesh,
+                dimensionedVector(dimVelocity, Zero)
+            );
+            forAll(C, celli)
+            {
+                U[celli] = us + pow(dist(C[celli]), power)*vector(1, 0.5, 0);
+            }
+            U.correctBoundaryConditions();
+            fvVectorMatrix eqn(U, dimVelocity*dimVolume/dimTime);
+            eqn.diag() = A;
+            wall.constrain(eqn, A, KmaxByA);
+            // the forcing's residual per cell: (A + K) u_c - K w u_N
+            // - K (1 - w) u_s - A u_c = K (u_c - u_t), relative to K |u_c|
+            const scalarField& diag = eqn.diag();
+            const scalarField& lower = eqn.lower();
+            const scalarField& upper = eqn.upper();
+            const labelUList& l = mesh.lduAddr().lowerAddr();
+            const labelUList& u = mesh.lduAddr().upperAddr();
+            vectorField r(mesh.nCells(), Zero);
+            forAll(r, celli)
+            {
+                r[celli] = (diag[celli] - A[celli])*U[celli]
+                  - eqn.source()[celli];
+            }
+            forAll(l, facei)
+            {
+                r[l[facei]] += upper[facei]*U[u[facei]];
+                r[u[facei]] += lower[facei]*U[l[facei]];
+            }
+            scalar err = 0;
+            scalar Kmin = GREAT, Kmax = 0;
+            forAll(cells, i)
+            {
+                const scalar K = wall.penalty()[i];
+                Kmin = min(Kmin, K);
+                Kmax = max(Kmax, K);
+                err = max(err, mag(r[cells[i]])/max(K*mag(U[cells[i]]), VSMALL));
+            }
+            vectorField nodeForce(surf.points().size(), Zero);
+            const vector F(wall.addForce(U, 1, nodeForce));
+            const scalar eF = mag(F)/max(sum(wall.penalty())*mag(us), VSMALL);
+            const scalar eSpread = mag(sum(nodeForce) - F)/max(mag(F), VSMALL);
+            Info<< "  u - u_s = dist^" << power << ": K from " << Kmin
+                << " to " << Kmax << " A, reaction " << F << endl;
+            if (power == 1)
+            {
+                check("linear: largest |K (u - u_t)|/(K |u|) of a forcing cell",
+                    err, 0, 1e-12, err < 1e-12);
+                check("linear: |reaction|/(sum K |u_s|)", eF, 0, 1e-12,
+                    eF < 1e-12);
+                check("penalty within (0, 49 A]", Kmax, KmaxByA, 0,
+                    Kmin > 0 && Kmax <= KmaxByA*(1 + 1e-12));
+            }
+            else
+            {
+                check("negative control, quadratic: largest |K (u - u_t)|/"
+                    "(K |u|) (must exceed 1e-3)", err, 1e-3, 0, err > 1e-3);
+                check("quadratic: the reaction's spread to the nodes keeps"
+                    " its total", eSpread, 0, 1e-12, eSpread < 1e-12);
+            }
         }
     }
     else if (test == "outside")
