@@ -197,16 +197,21 @@ void Foam::immersedWallInterpolation::constrain
     const scalar KmaxByA
 )
 {
+    penalty_.setSize(cells_.size());
+    if (cells_.empty())
+    {
+        return;
+    }
     scalarField& diag = eqn.diag();
     Field<vector>& source = eqn.source();
     // the coefficient of u_N in the row of c alone: the matrix made
-    // asymmetric (a symmetric one shares upper for both rows)
+    // asymmetric (a symmetric one shares upper for both rows; the
+    // momentum matrix with convection is asymmetric already)
     scalarField& lower = eqn.lower();
     scalarField& upper = eqn.upper();
     const labelUList& own = mesh_.faceOwner();
     const polyBoundaryMesh& patches = mesh_.boundaryMesh();
     const scalarField& V = mesh_.V();
-    penalty_.setSize(cells_.size());
     forAll(cells_, i)
     {
         const label celli = cells_[i];
