@@ -86,6 +86,33 @@ static triSurface closedSurface
 }
 
 
+// The prism below the tilted plane z = z0 + s (x - 0.5) over [-1, 2]^2,
+// down to z = -1: its top crosses the box [0,1]^3 as a plane
+static triSurface tiltedPrism(const scalar z0, const scalar s)
+{
+    pointField pts(8);
+    label k = 0;
+    for (const scalar x : {-1.0, 2.0})
+    for (const scalar y : {-1.0, 2.0})
+    {
+        pts[k++] = point(x, y, -1);
+        pts[k++] = point(x, y, z0 + s*(x - 0.5));
+    }
+    // corners: 0 (-1,-1) 2 (-1,2) 4 (2,-1) 6 (2,2); +1 on top
+    List<labelledTri> tris
+    ({
+        labelledTri(0, 4, 6, 0), labelledTri(0, 6, 2, 0),
+        labelledTri(1, 3, 7, 0), labelledTri(1, 7, 5, 0),
+        labelledTri(0, 1, 5, 0), labelledTri(0, 5, 4, 0),
+        labelledTri(2, 6, 7, 0), labelledTri(2, 7, 3, 0),
+        labelledTri(0, 2, 3, 0), labelledTri(0, 3, 1, 0),
+        labelledTri(4, 5, 7, 0), labelledTri(4, 7, 6, 0)
+    });
+    scalar volume;
+    return closedSurface(pts, tris, volume);
+}
+
+
 // Icosphere of radius R about c, n subdivisions (points projected on the
 // sphere)
 static triSurface icosphere
@@ -1206,26 +1233,7 @@ int main(int argc, char *argv[])
         //    area sqrt(1 + s^2), the wall normal n of the plane in every cell
         {
             const scalar z0 = 0.47, s = 0.3;
-            pointField pts(8);
-            label k = 0;
-            for (const scalar x : {-1.0, 2.0})
-            for (const scalar y : {-1.0, 2.0})
-            {
-                pts[k++] = point(x, y, -1);
-                pts[k++] = point(x, y, z0 + s*(x - 0.5));
-            }
-            // corners: 0 (-1,-1) 2 (-1,2) 4 (2,-1) 6 (2,2); +1 on top
-            List<labelledTri> tris
-            ({
-                labelledTri(0, 4, 6, 0), labelledTri(0, 6, 2, 0),
-                labelledTri(1, 3, 7, 0), labelledTri(1, 7, 5, 0),
-                labelledTri(0, 1, 5, 0), labelledTri(0, 5, 4, 0),
-                labelledTri(2, 6, 7, 0), labelledTri(2, 7, 3, 0),
-                labelledTri(0, 2, 3, 0), labelledTri(0, 3, 1, 0),
-                labelledTri(4, 5, 7, 0), labelledTri(4, 7, 6, 0)
-            });
-            scalar prismVolume;
-            const triSurface surf(closedSurface(pts, tris, prismVolume));
+            const triSurface surf(tiltedPrism(z0, s));
             const triSurfaceSearch search(surf);
             immersedCutCells cut(mesh);
             cut.update(search, allCells);
@@ -1317,25 +1325,7 @@ int main(int argc, char *argv[])
         // (dist_N = d + s exactly), so the forcing K (u_t - u) and its
         // reaction vanish; for g = dist^2 they do not (negative control).
         const scalar z0 = 0.47, sl = 0.3;
-        pointField pts(8);
-        label k = 0;
-        for (const scalar x : {-1.0, 2.0})
-        for (const scalar y : {-1.0, 2.0})
-        {
-            pts[k++] = point(x, y, -1);
-            pts[k++] = point(x, y, z0 + sl*(x - 0.5));
-        }
-        List<labelledTri> tris
-        ({
-            labelledTri(0, 4, 6, 0), labelledTri(0, 6, 2, 0),
-            labelledTri(1, 3, 7, 0), labelledTri(1, 7, 5, 0),
-            labelledTri(0, 1, 5, 0), labelledTri(0, 5, 4, 0),
-            labelledTri(2, 6, 7, 0), labelledTri(2, 7, 3, 0),
-            labelledTri(0, 2, 3, 0), labelledTri(0, 3, 1, 0),
-            labelledTri(4, 5, 7, 0), labelledTri(4, 7, 6, 0)
-        });
-        scalar prismVolume;
-        const triSurface surf(closedSurface(pts, tris, prismVolume));
+        const triSurface surf(tiltedPrism(z0, sl));
         const triSurfaceSearch search(surf);
         const vector n = vector(-sl, 0, 1)/std::sqrt(1 + sl*sl);
         auto dist = [&](const point& x)
