@@ -133,19 +133,27 @@ Foam::scalar Foam::immersedCutCells::tetFraction
 Foam::tmp<Foam::scalarField> Foam::immersedCutCells::signedDistance
 (
     const triSurfaceSearch& surface,
-    const pointField& samples
+    const triSurfaceSearch& distanceSurface,
+    const pointField& samples,
+    const scalarField& radiusSqr
 )
 {
     List<pointIndexHit> nearest;
-    surface.findNearest(samples, scalarField(samples.size(), GREAT), nearest);
+    distanceSurface.findNearest(samples, radiusSqr, nearest);
     const boolList inside(surface.calcInside(samples));
 
     tmp<scalarField> tphi(new scalarField(samples.size()));
     scalarField& phi = tphi.ref();
     forAll(samples, i)
     {
+        // beyond the radius: the sign, with the radius as its magnitude
+        // (update: only the samples of cells whole on one side of the
+        // surface are searched no further, and those cells' fractions
+        // and apertures depend on the sign alone)
         const scalar d =
-            nearest[i].hit() ? mag(nearest[i].hitPoint() - samples[i]) : GREAT;
+            nearest[i].hit()
+          ? mag(nearest[i].hitPoint() - samples[i])
+          : Foam::sqrt(radiusSqr[i]);
         phi[i] = inside[i] ? -d : d;
     }
     return tphi;
@@ -224,50 +232,166 @@ void Foam::immersedCutCells::update
     aperture_.clear();
     openArea_.clear();
 
-    // the samples: points, face centres, cell centres (each once)
-    DynamicList<point> samples;
-    DynamicList<label> pointLabels, faceLabels;
-    for (const label celli : cells_)
-    {
-        for (const label facei : mesh_.cells()[celli])
-        {
-            if (facePhi_.insert(facei, 0))
-            {
-                faceLabels.append(facei);
-                for (const label pointi : mesh_.faces()[facei])
-                {
-                    if (pointPhi_.insert(pointi, 0))
-                    {
-                        pointLabels.append(pointi);
-                    }
-                }
-            }
-        }
-    }
-    samples.append(UIndirectList<point>(mesh_.points(), pointLabels)());
-    samples.append(UIndirectList<point>(mesh_.faceCentres(), faceLabels)());
-    samples.append(UIndirectList<point>(mesh_.cellCentres(), cells_)());
-
-    // a 2D case (empty front and back): the samples on the mid-plane, so
-    // that the solid's surfaces facing the empty patches (a slab spanning
-    // the depth) do not count
+    // a 2D case (empty front and back): the samples on the mid-plane, and
+    // the distance to the solid's in-plane surface only (a slab spanning
+    // the depth: its faces facing the empty patches, dz/2 from the
+    // mid-plane, would otherwise be the nearest surface of any sample
+    // deeper inside than that, and cap phi there; the sign still comes
+    // from the whole closed surface)
     const Vector<label>& solD = mesh_.solutionD();
     const point mid(mesh_.bounds().midpoint());
-    for (direction d = 0; d < vector::nComponents; ++d)
+    const bool twoD = mesh_.nSolutionD() < vector::nComponents;
+    auto onPlane = [&](point x)
     {
-        if (solD[d] < 0)
+        for (direction d = 0; d < vector::nComponents; ++d)
         {
-            for (point& x : samples)
+            if (solD[d] < 0) { x[d] = mid[d]; }
+        }
+        return x;
+    };
+    autoPtr<triSurface> sides;
+    autoPtr<triSurfaceSearch> sideSearch;
+    if (twoD)
+    {
+        const triSurface& tris = surface.surface();
+        const vectorField& n = tris.faceNormals();
+        DynamicList<labelledTri> inPlane(tris.size());
+        forAll(tris, facei)
+        {
+            scalar out = 0;
+            for (direction d = 0; d < vector::nComponents; ++d)
             {
-                x[d] = mid[d];
+                if (solD[d] < 0) { out += sqr(n[facei][d]); }
+            }
+            if (out < 0.25)     // normal within 30 degrees of the plane
+            {
+                inPlane.append(tris[facei]);
+            }
+        }
+        sides.reset(new triSurface(List<labelledTri>(inPlane), tris.points()));
+        sideSearch.reset(new triSurfaceSearch(sides()));
+    }
+    const triSurfaceSearch& distance = twoD ? sideSearch() : surface;
+
+    // Which cells the surface passes near: a cell whose centre has no
+    // surface point within its reach r (the largest distance of its
+    // points from its centre, in the plane in 2D) lies whole on one side,
+    // its fraction 0 or 1 and its faces' apertures too, whatever the
+    // magnitude of phi. The samples of the other cells are searched
+    // within 2 r, which holds their nearest surface point (within r of
+    // the centre, so within 2 r of any point of the cell): exact. Most
+    // covered cells of a thick solid are far from its surface, and the
+    // unbounded search of their samples was most of the cost (Turek-Hron
+    // FSI1, N = 24, -refine 2: a quarter of the coupled run).
+    const pointField& pts = mesh_.points();
+    const vectorField& Cc = mesh_.cellCentres();
+    const labelListList& cellPoints = mesh_.cellPoints();
+    scalarField reachSqr(cells_.size(), 0);
+    pointField centres(cells_.size());
+    forAll(cells_, i)
+    {
+        const label celli = cells_[i];
+        centres[i] = onPlane(Cc[celli]);
+        for (const label pointi : cellPoints[celli])
+        {
+            reachSqr[i] =
+                max(reachSqr[i], magSqr(onPlane(pts[pointi]) - centres[i]));
+        }
+        reachSqr[i] *= 1 + 1e-6;
+    }
+    const scalarField centrePhi
+    (
+        signedDistance(surface, distance, centres, reachSqr)
+    );
+
+    // The samples of the cells near the surface: their points, face
+    // centres and centres (each once), each searched within the largest
+    // 2 r of the near cells it belongs to
+    Map<label> pointSample, faceSample;
+    DynamicList<label> pointLabels, faceLabels, nearCells;
+    DynamicList<scalar> pointR2, faceR2;
+    auto add = [](Map<label>& index, DynamicList<label>& labels,
+                  DynamicList<scalar>& r2, const label key, const scalar r)
+    {
+        const auto iter = index.cfind(key);
+        if (iter.found())
+        {
+            r2[*iter] = max(r2[*iter], r);
+        }
+        else
+        {
+            index.insert(key, labels.size());
+            labels.append(key);
+            r2.append(r);
+        }
+    };
+    forAll(cells_, i)
+    {
+        if (mag(centrePhi[i]) >= Foam::sqrt(reachSqr[i]))
+        {
+            continue;   // whole on one side
+        }
+        nearCells.append(i);
+        const scalar r2 = 4*reachSqr[i];
+        for (const label facei : mesh_.cells()[cells_[i]])
+        {
+            add(faceSample, faceLabels, faceR2, facei, r2);
+            for (const label pointi : mesh_.faces()[facei])
+            {
+                add(pointSample, pointLabels, pointR2, pointi, r2);
             }
         }
     }
-    const scalarField phi(signedDistance(surface, pointField(samples)));
+    pointField samples(pointLabels.size() + faceLabels.size() + nearCells.size());
+    scalarField radiusSqr(samples.size());
     label k = 0;
+    forAll(pointLabels, j)
+    {
+        radiusSqr[k] = pointR2[j];
+        samples[k++] = onPlane(pts[pointLabels[j]]);
+    }
+    forAll(faceLabels, j)
+    {
+        radiusSqr[k] = faceR2[j];
+        samples[k++] = onPlane(mesh_.faceCentres()[faceLabels[j]]);
+    }
+    for (const label i : nearCells)
+    {
+        radiusSqr[k] = 4*reachSqr[i];
+        samples[k++] = centres[i];
+    }
+    const scalarField phi
+    (
+        signedDistance(surface, distance, samples, radiusSqr)
+    );
+    k = 0;
     for (const label pointi : pointLabels) { pointPhi_.set(pointi, phi[k++]); }
     for (const label facei : faceLabels) { facePhi_.set(facei, phi[k++]); }
-    for (const label celli : cells_) { cellPhi_.set(celli, phi[k++]); }
+    for (const label i : nearCells) { cellPhi_.set(cells_[i], phi[k++]); }
+
+    // The cells whole on one side: phi of the centre's sign, the reach as
+    // its magnitude, where no near cell gave an exact value
+    forAll(cells_, i)
+    {
+        const label celli = cells_[i];
+        if (cellPhi_.found(celli))
+        {
+            continue;
+        }
+        const scalar p = centrePhi[i];
+        cellPhi_.set(celli, p);
+        for (const label facei : mesh_.cells()[celli])
+        {
+            if (facePhi_.insert(facei, p))
+            {
+                faceLabels.append(facei);
+            }
+            for (const label pointi : mesh_.faces()[facei])
+            {
+                pointPhi_.insert(pointi, p);
+            }
+        }
+    }
 
     for (const label facei : faceLabels)
     {

@@ -1227,90 +1227,163 @@ int main(int argc, char *argv[])
         labelList allCells(identity(mesh.nCells()));
         const scalarField V(mesh.V().field());
 
-        // 2. A tilted plane z = z0 + s (x - 0.5) (the top of a large prism)
-        //    through the box [0,1]^3: phi is linear in the box, so the cut
-        //    geometry is exact to round-off. Solid volume in the box z0, wall
-        //    area sqrt(1 + s^2), the wall normal n of the plane in every cell
+        // 2D (cutCells2D: 10 x 10 cells 0.1 wide, one 0.05 deep, empty
+        // front and back): the slab below the line y = y0 + s (x - 0.5),
+        // spanning the depth inset by 1e-3 of it (as the Turek-Hron flag),
+        // is cut by its in-plane sides only, phi the distance to the line
+        // at the mid-plane: exact. The cut cells have points up to 0.14
+        // from the line, deeper inside than the slab's front and back
+        // faces lie from the mid-plane (0.025): until 26 Nov 2026 these
+        // faces were the nearest surface there and capped phi at -0.025
+        // (the negative control: this test on that code measured the area
+        // 0.466873 against 0.47, the wall length 1.0456 against 1.04403,
+        // the wall vector 0.0075 off the normal and centre distances up to
+        // 0.0277 off)
+        if (mesh.nSolutionD() < vector::nComponents)
         {
-            const scalar z0 = 0.47, s = 0.3;
-            const triSurface surf(tiltedPrism(z0, s));
+            const scalar y0 = 0.47, s = 0.3;
+            const boundBox& bb = mesh.bounds();
+            const scalar dz = bb.span().z();
+            const scalar za = bb.min().z() + 1e-3*dz;
+            const scalar zb = bb.max().z() - 1e-3*dz;
+            pointField pts(8);
+            label k = 0;
+            for (const scalar x : {-1.0, 2.0})
+            for (const scalar z : {za, zb})
+            {
+                pts[k++] = point(x, -1, z);
+                pts[k++] = point(x, y0 + s*(x - 0.5), z);
+            }
+            List<labelledTri> tris
+            ({
+                labelledTri(0, 4, 6, 0), labelledTri(0, 6, 2, 0),
+                labelledTri(1, 3, 7, 0), labelledTri(1, 7, 5, 0),
+                labelledTri(0, 1, 5, 0), labelledTri(0, 5, 4, 0),
+                labelledTri(2, 6, 7, 0), labelledTri(2, 7, 3, 0),
+                labelledTri(0, 2, 3, 0), labelledTri(0, 3, 1, 0),
+                labelledTri(4, 5, 7, 0), labelledTri(4, 7, 6, 0)
+            });
+            scalar volume;
+            const triSurface surf(closedSurface(pts, tris, volume));
             const triSurfaceSearch search(surf);
             immersedCutCells cut(mesh);
             cut.update(search, allCells);
 
-            const scalar Vs = sum((1 - cut.fraction())*V);
+            const scalar area = sum((1 - cut.fraction())*V)/dz;
             const vectorField Aw(wallVectors(cut));
-            const vector n = vector(-s, 0, 1)/std::sqrt(1 + s*s);
-            scalar area = 0, offNormal = 0;
+            const vector n = vector(-s, 1, 0)/std::sqrt(1 + s*s);
+            scalar length = 0, offNormal = 0, errD = 0;
             label nCut = 0;
             forAll(Aw, i)
             {
-                area += mag(Aw[i]);
-                offNormal = max(offNormal, mag(Aw[i] - (Aw[i] & n)*n));
-                if (cut.fraction()[i] > 0 && cut.fraction()[i] < 1) { ++nCut; }
+                length += mag(Aw[i])/dz;
+                offNormal = max(offNormal, mag(Aw[i] - (Aw[i] & n)*n)/dz);
+                if (cut.fraction()[i] > 0 && cut.fraction()[i] < 1)
+                {
+                    ++nCut;
+                    const point& c = mesh.C()[i];
+                    const scalar d =
+                        (c.y() - y0 - s*(c.x() - 0.5))*n.y();
+                    errD = max(errD, mag(cut.centreDistance(i) - d));
+                }
             }
-            Info<< "tilted plane: " << nCut << " cut cells" << endl;
-            const scalar eAp = planarApertureError(cut);
-            check("plane: aperture x S_f against the open area on the"
-                " triangular faces", eAp, 0, 1e-12, eAp < 1e-12);
-            check("plane: solid volume in the box", Vs, z0, 1e-9,
-                mag(Vs - z0) < 1e-9);
-            check("plane: wall area", area, std::sqrt(1 + s*s), 1e-9,
-                mag(area - std::sqrt(1 + s*s)) < 1e-9);
-            check("plane: wall vector off the plane's normal (largest)",
+            Info<< "2D slab: " << nCut << " cut cells" << endl;
+            check("2D slab: solid area in the square", area, y0, 1e-9,
+                mag(area - y0) < 1e-9);
+            check("2D slab: wall length", length, std::sqrt(1 + s*s), 1e-9,
+                mag(length - std::sqrt(1 + s*s)) < 1e-9);
+            check("2D slab: wall vector off the line's normal (largest)",
                 offNormal, 0, 1e-12, offNormal < 1e-12);
+            check("2D slab: cut cells' centre distance to the line (largest"
+                " error)", errD, 0, 1e-12, errD < 1e-12);
         }
-
-        // 3. Spheres (icospheres, 5 subdivisions) of radius 0.2 and 0.4
-        //    (2 and 4 fluid cells): the solid volume and wall area against
-        //    those of the faceted surface itself. Linear phi on a curved
-        //    surface is second order: the errors must fall with (h/R)^2
-        //    (order >= 1.5 from the two radii) and be within 2 % at R = 4 h.
-        //    For comparison: the staircase of the cells whose centre is
-        //    inside
+        else
         {
-            scalarField eV(2), eA(2);
-            const scalarList radii({0.2, 0.4});
-            forAll(radii, r)
+            // 2. A tilted plane z = z0 + s (x - 0.5) (the top of a large prism)
+            //    through the box [0,1]^3: phi is linear in the box, so the cut
+            //    geometry is exact to round-off. Solid volume in the box z0, wall
+            //    area sqrt(1 + s^2), the wall normal n of the plane in every cell
             {
-                const point c(0.5, 0.5, 0.5);
-                scalar Vsphere;
-                const triSurface surf(icosphere(c, radii[r], 5, Vsphere));
-                scalar Asphere = 0;
-                forAll(surf, i) { Asphere += surf[i].mag(surf.points()); }
+                const scalar z0 = 0.47, s = 0.3;
+                const triSurface surf(tiltedPrism(z0, s));
                 const triSurfaceSearch search(surf);
                 immersedCutCells cut(mesh);
                 cut.update(search, allCells);
+
                 const scalar Vs = sum((1 - cut.fraction())*V);
-                const scalar area = sum(mag(wallVectors(cut)));
-                scalar Vstair = 0;
-                forAll(allCells, i)
+                const vectorField Aw(wallVectors(cut));
+                const vector n = vector(-s, 0, 1)/std::sqrt(1 + s*s);
+                scalar area = 0, offNormal = 0;
+                label nCut = 0;
+                forAll(Aw, i)
                 {
-                    if (cut.centreDistance(allCells[i]) < 0)
-                    {
-                        Vstair += V[i];
-                    }
+                    area += mag(Aw[i]);
+                    offNormal = max(offNormal, mag(Aw[i] - (Aw[i] & n)*n));
+                    if (cut.fraction()[i] > 0 && cut.fraction()[i] < 1) { ++nCut; }
                 }
-                eV[r] = mag(Vs/Vsphere - 1);
-                eA[r] = mag(area/Asphere - 1);
-                Info<< "sphere R = " << radii[r] << ": solid volume " << Vs
-                    << " against the faceted " << Vsphere << " (4/3 pi R^3 "
-                    << 4.0/3*constant::mathematical::pi*pow3(radii[r])
-                    << "), relative error " << eV[r] << "; wall area " << area
-                    << " against " << Asphere << ", relative error " << eA[r]
-                    << "; staircase of centres inside: volume error "
-                    << mag(Vstair/Vsphere - 1) << endl;
+                Info<< "tilted plane: " << nCut << " cut cells" << endl;
+                const scalar eAp = planarApertureError(cut);
+                check("plane: aperture x S_f against the open area on the"
+                    " triangular faces", eAp, 0, 1e-12, eAp < 1e-12);
+                check("plane: solid volume in the box", Vs, z0, 1e-9,
+                    mag(Vs - z0) < 1e-9);
+                check("plane: wall area", area, std::sqrt(1 + s*s), 1e-9,
+                    mag(area - std::sqrt(1 + s*s)) < 1e-9);
+                check("plane: wall vector off the plane's normal (largest)",
+                    offNormal, 0, 1e-12, offNormal < 1e-12);
             }
-            const scalar orderV = std::log(eV[0]/eV[1])/std::log(2.0);
-            const scalar orderA = std::log(eA[0]/eA[1])/std::log(2.0);
-            check("sphere: order of the volume error", orderV, 2, 0.5,
-                orderV > 1.5);
-            check("sphere: order of the wall area error", orderA, 2, 0.5,
-                orderA > 1.5);
-            check("sphere R = 4 h: volume (relative error)", eV[1], 0, 0.02,
-                eV[1] < 0.02);
-            check("sphere R = 4 h: wall area (relative error)", eA[1], 0,
-                0.02, eA[1] < 0.02);
+
+            // 3. Spheres (icospheres, 5 subdivisions) of radius 0.2 and 0.4
+            //    (2 and 4 fluid cells): the solid volume and wall area against
+            //    those of the faceted surface itself. Linear phi on a curved
+            //    surface is second order: the errors must fall with (h/R)^2
+            //    (order >= 1.5 from the two radii) and be within 2 % at R = 4 h.
+            //    For comparison: the staircase of the cells whose centre is
+            //    inside
+            {
+                scalarField eV(2), eA(2);
+                const scalarList radii({0.2, 0.4});
+                forAll(radii, r)
+                {
+                    const point c(0.5, 0.5, 0.5);
+                    scalar Vsphere;
+                    const triSurface surf(icosphere(c, radii[r], 5, Vsphere));
+                    scalar Asphere = 0;
+                    forAll(surf, i) { Asphere += surf[i].mag(surf.points()); }
+                    const triSurfaceSearch search(surf);
+                    immersedCutCells cut(mesh);
+                    cut.update(search, allCells);
+                    const scalar Vs = sum((1 - cut.fraction())*V);
+                    const scalar area = sum(mag(wallVectors(cut)));
+                    scalar Vstair = 0;
+                    forAll(allCells, i)
+                    {
+                        if (cut.centreDistance(allCells[i]) < 0)
+                        {
+                            Vstair += V[i];
+                        }
+                    }
+                    eV[r] = mag(Vs/Vsphere - 1);
+                    eA[r] = mag(area/Asphere - 1);
+                    Info<< "sphere R = " << radii[r] << ": solid volume " << Vs
+                        << " against the faceted " << Vsphere << " (4/3 pi R^3 "
+                        << 4.0/3*constant::mathematical::pi*pow3(radii[r])
+                        << "), relative error " << eV[r] << "; wall area " << area
+                        << " against " << Asphere << ", relative error " << eA[r]
+                        << "; staircase of centres inside: volume error "
+                        << mag(Vstair/Vsphere - 1) << endl;
+                }
+                const scalar orderV = std::log(eV[0]/eV[1])/std::log(2.0);
+                const scalar orderA = std::log(eA[0]/eA[1])/std::log(2.0);
+                check("sphere: order of the volume error", orderV, 2, 0.5,
+                    orderV > 1.5);
+                check("sphere: order of the wall area error", orderA, 2, 0.5,
+                    orderA > 1.5);
+                check("sphere R = 4 h: volume (relative error)", eV[1], 0, 0.02,
+                    eV[1] < 0.02);
+                check("sphere R = 4 h: wall area (relative error)", eA[1], 0,
+                    0.02, eA[1] < 0.02);
+            }
         }
     }
     else if (test == "wallInterp")
