@@ -86,18 +86,11 @@ static triSurface closedSurface
 }
 
 
-// The prism below the tilted plane z = z0 + s (x - 0.5) over [-1, 2]^2,
-// down to z = -1: its top crosses the box [0,1]^3 as a plane
-static triSurface tiltedPrism(const scalar z0, const scalar s)
+// A hexahedron's closed surface from its 8 corners, listed as the
+// tilted prism below lists them: (a, b) over {-1, 2}^2, a outer, each
+// corner's bottom then top
+static triSurface hexSurface(const pointField& pts)
 {
-    pointField pts(8);
-    label k = 0;
-    for (const scalar x : {-1.0, 2.0})
-    for (const scalar y : {-1.0, 2.0})
-    {
-        pts[k++] = point(x, y, -1);
-        pts[k++] = point(x, y, z0 + s*(x - 0.5));
-    }
     // corners: 0 (-1,-1) 2 (-1,2) 4 (2,-1) 6 (2,2); +1 on top
     List<labelledTri> tris
     ({
@@ -110,6 +103,22 @@ static triSurface tiltedPrism(const scalar z0, const scalar s)
     });
     scalar volume;
     return closedSurface(pts, tris, volume);
+}
+
+
+// The prism below the tilted plane z = z0 + s (x - 0.5) over [-1, 2]^2,
+// down to z = -1: its top crosses the box [0,1]^3 as a plane
+static triSurface tiltedPrism(const scalar z0, const scalar s)
+{
+    pointField pts(8);
+    label k = 0;
+    for (const scalar x : {-1.0, 2.0})
+    for (const scalar y : {-1.0, 2.0})
+    {
+        pts[k++] = point(x, y, -1);
+        pts[k++] = point(x, y, z0 + s*(x - 0.5));
+    }
+    return hexSurface(pts);
 }
 
 
@@ -1254,17 +1263,7 @@ int main(int argc, char *argv[])
                 pts[k++] = point(x, -1, z);
                 pts[k++] = point(x, y0 + s*(x - 0.5), z);
             }
-            List<labelledTri> tris
-            ({
-                labelledTri(0, 4, 6, 0), labelledTri(0, 6, 2, 0),
-                labelledTri(1, 3, 7, 0), labelledTri(1, 7, 5, 0),
-                labelledTri(0, 1, 5, 0), labelledTri(0, 5, 4, 0),
-                labelledTri(2, 6, 7, 0), labelledTri(2, 7, 3, 0),
-                labelledTri(0, 2, 3, 0), labelledTri(0, 3, 1, 0),
-                labelledTri(4, 5, 7, 0), labelledTri(4, 7, 6, 0)
-            });
-            scalar volume;
-            const triSurface surf(closedSurface(pts, tris, volume));
+            const triSurface surf(hexSurface(pts));
             const triSurfaceSearch search(surf);
             immersedCutCells cut(mesh);
             cut.update(search, allCells);
