@@ -342,7 +342,10 @@ void Foam::immersedCutCells::update
             }
         }
     }
-    pointField samples(pointLabels.size() + faceLabels.size() + nearCells.size());
+    pointField samples
+    (
+        pointLabels.size() + faceLabels.size() + nearCells.size()
+    );
     scalarField radiusSqr(samples.size());
     label k = 0;
     forAll(pointLabels, j)
