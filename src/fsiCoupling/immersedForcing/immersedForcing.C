@@ -525,56 +525,6 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
         if (interpolation_)
         {
             updateWallInterpolation(newGeometry, search);
-            if (getenv("ISFEM_APERT"))
-            {
-                Map<label> index(2*covered.size());
-                forAll(covered, i)
-                {
-                    index.insert(covered[i], i);
-                }
-                const labelUList& own = mesh_.owner();
-                const labelUList& nei = mesh_.neighbour();
-                DynamicList<label> faces;
-                DynamicList<scalar> aperture;
-                DynamicList<vector> velocity;
-                labelHashSet done;
-                const bool heldOnly = getenv("ISFEM_APERT_HELD");
-                forAll(cutCellList_, j)
-                {
-                    const label celli = cutCellList_[j];
-                    const label i = cutPairIndex_[j];
-                    if (heldOnly && !cutInside_[j])
-                    {
-                        continue;
-                    }
-                    for (const label facei : mesh_.cells()[celli])
-                    {
-                        if (!mesh_.isInternalFace(facei))
-                        {
-                            continue;
-                        }
-                        const label other =
-                            own[facei] == celli ? nei[facei] : own[facei];
-                        const auto iter = index.cfind(other);
-                        if (iter.found() && !isCut[*iter])
-                        {
-                            continue;
-                        }
-                        if (done.insert(facei))
-                        {
-                            faces.append(facei);
-                            aperture.append(cutCells_.aperture(facei));
-                            velocity.append
-                            (
-                                iter.found()
-                              ? 0.5*(coveredVelocity_[i] + coveredVelocity_[*iter])
-                              : coveredVelocity_[i]
-                            );
-                        }
-                    }
-                }
-                boundary_.setCutFaces(faces, aperture, vectorField(velocity));
-            }
         }
         if (debug)
         {
