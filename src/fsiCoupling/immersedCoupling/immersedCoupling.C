@@ -30,7 +30,10 @@ Foam::immersedCoupling::immersedCoupling(const fvMesh& mesh)
     if (solid_->dict().found("coupling"))
     {
         const dictionary& c = solid_->dict().subDict("coupling");
-        const wordList allowed({"coverage", "interpolation", "maxWalk"});
+        const wordList allowed
+        (
+            {"coverage", "interpolation", "maxWalk", "boundaryTolerance"}
+        );
         for (const entry& e : c)
         {
             if (!allowed.found(e.keyword()))
@@ -44,6 +47,14 @@ Foam::immersedCoupling::immersedCoupling(const fvMesh& mesh)
         }
     }
     updatePairs();
+    if (pairs_.nOnBoundary())
+    {
+        Info<< "immersedCoupling: " << pairs_.nOnBoundary() << " of "
+            << solid_->points().size() << " solid nodes lie outside the"
+            << " fluid mesh's faceted boundary, by at most "
+            << pairs_.maxOutside() << " m: each in the cell of its nearest"
+            << " boundary face" << endl;
+    }
 }
 
 

@@ -8,6 +8,7 @@
 #include "Tuple2.H"
 #include "processorPolyPatch.H"
 #include "treeDataCell.H"
+#include "treeDataFace.H"
 #include "polyMeshTetDecomposition.H"
 #include "clockValue.H"
 
@@ -45,11 +46,15 @@ Foam::immersedPairs::immersedPairs
     ),
 
     maxWalk_(dict.getOrDefault<label>("maxWalk", 100)),
+    boundaryTolerance_(dict.getOrDefault<scalar>("boundaryTolerance", 0.25)),
+    maxBoundaryDistance_(0),
     nodeCell_(),
     nSteps_(0),
     nWalks_(0),
     nFallback_(0),
     nLeft_(0),
+    nOnBoundary_(0),
+    maxOutside_(0),
     candidates_(),
     candidateGap_(),
     candidateCentreGap_(),
@@ -68,6 +73,23 @@ Foam::immersedPairs::immersedPairs
     nearElements_(),
     nearPairs_()
 {
+    if (!(boundaryTolerance_ >= 0 && boundaryTolerance_ <= 1))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'boundaryTolerance' " << boundaryTolerance_ << " in "
+            << dict.name() << " must lie in [0, 1] (a fraction of a cell's"
+            << " size: how far outside the fluid mesh a solid node may lie)"
+            << exit(FatalIOError);
+    }
+    maxBoundaryDistance_ = boundaryTolerance_*Foam::cbrt
+    (
+        returnReduce
+        (
+            mesh_.nCells() ? max(mesh_.cellVolumes()) : 0.0,
+            maxOp<scalar>()
+        )
+    ) + ROOTVSMALL;
+
     // a quarter of the smallest cell's size
     if (mesh_.nCells())
     {
@@ -261,6 +283,78 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
         }
     }
 
+    // Nodes on the fluid domain's boundary (a leaflet's attachment on the
+    // root wall) can lie just outside the faceted boundary of the fluid mesh
+    // (a wall facet's chord, a solid face's edge through the wall): within
+    // boundaryTolerance_ of the cube root of its cell's volume of a boundary
+    // face (not coupled), such a node takes the cell of its nearest one. The
+    // nearest over all ranks wins, the lowest rank on a tie.
+    {
+        const indexedOctree<treeDataFace>& bTree = search_.boundaryTree();
+        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+        scalarField dist(n, GREAT);
+        labelList nearCell(n, -1);
+        forAll(owner, i)
+        {
+            if (owner[i] != labelMax)
+            {
+                continue;
+            }
+            const pointIndexHit h =
+                bTree.findNearest(x[i], sqr(maxBoundaryDistance_));
+            if (!h.hit())
+            {
+                continue;
+            }
+            const label facei = bTree.shapes().faceLabels()[h.index()];
+            if (pbm[pbm.whichPatch(facei)].coupled())
+            {
+                continue;
+            }
+            const label celli = mesh_.faceOwner()[facei];
+            const scalar d = mag(h.hitPoint() - x[i]);
+            if (d <= boundaryTolerance_*cbrt(mesh_.cellVolumes()[celli]))
+            {
+                dist[i] = d;
+                nearCell[i] = celli;
+            }
+        }
+        scalarField minDist(dist);
+        if (Pstream::parRun())
+        {
+            Pstream::listCombineGather(minDist, minEqOp<scalar>());
+            Pstream::listCombineScatter(minDist);
+        }
+        labelList nearOwner(n, labelMax);
+        forAll(dist, i)
+        {
+            if (nearCell[i] >= 0 && dist[i] == minDist[i])
+            {
+                nearOwner[i] = Pstream::myProcNo();
+            }
+        }
+        if (Pstream::parRun())
+        {
+            Pstream::listCombineGather(nearOwner, minEqOp<label>());
+            Pstream::listCombineScatter(nearOwner);
+        }
+        nOnBoundary_ = 0;
+        maxOutside_ = 0;
+        forAll(owner, i)
+        {
+            if (owner[i] == labelMax && nearOwner[i] != labelMax)
+            {
+                owner[i] = nearOwner[i];
+                ++nOnBoundary_;
+                maxOutside_ = max(maxOutside_, minDist[i]);
+                if (nearOwner[i] == Pstream::myProcNo())
+                {
+                    cells[i] = nearCell[i];
+                }
+            }
+        }
+    }
+
     label nMissing = 0;
     label firstMissing = -1;
     forAll(owner, i)
@@ -281,7 +375,12 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
             << " domain (in no fluid cell); the first is node "
             << firstMissing << " at " << x[firstMissing] << nl
             << "    The solid must stay immersed in the fluid mesh"
-            << " (bounding box " << boundBox(mesh_.points(), true) << ")"
+            << " (bounding box " << boundBox(mesh_.points(), true) << "),"
+            << " a node on its boundary within "
+            << boundaryTolerance_ << " of its cell's size (the cube root of"
+            << " the volume) of a boundary face" << nl
+            << "    Move the solid inside the fluid domain or mesh the fluid"
+            << " around it"
             << exit(FatalError);
     }
 

@@ -1,5 +1,6 @@
 #include "io/SolidRun.hpp"
 
+#include "io/FibreFile.hpp"
 #include "io/SurfaceFile.hpp"
 
 #include <cmath>
@@ -130,30 +131,11 @@ std::vector<Vec3> fibreDirections(const CaseFile& c, const CaseEntry& e, const T
         if (e.args.size() != 2) c.fail(e, usage);
         std::filesystem::path p(e.args[1]);
         if (p.is_relative()) p = std::filesystem::path(c.directory()) / p;
-        std::ifstream in(p);
-        if (!in) c.fail(e, "cannot read the fibre direction file " + p.string());
-        std::vector<Vec3> d;
-        std::string line;
-        int lineNo = 0;
-        while (std::getline(in, line)) {
-            ++lineNo;
-            const auto hash = line.find('#');
-            if (hash != std::string::npos) line.erase(hash);
-            std::istringstream ls(line);
-            Vec3 v;
-            if (!(ls >> v.x())) continue;  // blank or comment
-            std::string rest;
-            if (!(ls >> v.y() >> v.z()) || (ls >> rest) || !v.allFinite() || !(v.norm() > 0)) {
-                c.fail(e, p.string() + " line " + std::to_string(lineNo) +
-                              ": expected three numbers of a non-zero direction");
-            }
-            d.push_back(v.normalized());
+        try {
+            return readFibreDirections(p.string(), ne);
+        } catch (const Error& ex) {
+            c.fail(e, ex.what());
         }
-        if (static_cast<int>(d.size()) != ne) {
-            c.fail(e, p.string() + " holds " + std::to_string(d.size()) + " directions for " +
-                          std::to_string(ne) + " elements of the mesh (one per element, in its order)");
-        }
-        return d;
     }
     c.fail(e, "unknown fibre layout '" + a.args[0] + "': " + usage);
 }

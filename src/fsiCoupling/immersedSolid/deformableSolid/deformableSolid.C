@@ -4,6 +4,7 @@
 
 // The solid library first (Eigen), then OpenFOAM
 #include "dynamics/ExplicitSolid.hpp"
+#include "io/FibreFile.hpp"
 #include "io/SurfaceFile.hpp"
 #include "io/VtuWriter.hpp"
 #include "material/Material.hpp"
@@ -313,11 +314,27 @@ Foam::immersedSolids::deformable::deformable
                 a[e] = toVec3(et/mag(et));
             }
         }
+        else if (layout == "file")
+        {
+            // one direction per element in the mesh's order (e.g. the
+            // .circumferential file of makeValveMeshes), relative to the case
+            checkKeys(f, {"type", "file"});
+            fileName name(f.get<fileName>("file"));
+            name.expand();
+            if (!name.isAbsolute())
+            {
+                name = runTime.globalPath()/name;
+            }
+            guarded(f, "fibres", [&]
+            {
+                a = smoothedSolid::readFibreDirections(name, nElements());
+            });
+        }
         else
         {
             FatalIOErrorInFunction(f)
                 << "Unknown fibre layout '" << layout << "' in " << f.name()
-                << nl << "    Valid types: (uniform cylindrical)"
+                << nl << "    Valid types: (uniform cylindrical file)"
                 << exit(FatalIOError);
         }
         guarded(f, "fibres", [&] { s.setFibreDirections(std::move(a)); });
