@@ -288,7 +288,12 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
     // (a wall facet's chord, a solid face's edge through the wall): within
     // boundaryTolerance_ of the cube root of its cell's volume of a boundary
     // face (not coupled), such a node takes the cell of its nearest one. The
-    // nearest over all ranks wins, the lowest rank on a tie.
+    // nearest over all ranks wins, the lowest rank on a tie. (owner is the
+    // same on every rank: nothing to do, and no communication, when every
+    // node is in a cell.)
+    nOnBoundary_ = 0;
+    maxOutside_ = 0;
+    if (owner.found(labelMax))
     {
         const indexedOctree<treeDataFace>& bTree = search_.boundaryTree();
         const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
@@ -338,8 +343,6 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
             Pstream::listCombineGather(nearOwner, minEqOp<label>());
             Pstream::listCombineScatter(nearOwner);
         }
-        nOnBoundary_ = 0;
-        maxOutside_ = 0;
         forAll(owner, i)
         {
             if (owner[i] == labelMax && nearOwner[i] != labelMax)
