@@ -4,6 +4,7 @@
 
 #include "immersedFsi.H"
 #include "immersedForcing.H"
+#include "immersedElasticForce.H"
 #include "fvOptions.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
@@ -11,7 +12,8 @@
 Foam::immersedFsi::immersedFsi(const fvMesh& mesh)
 :
     mesh_(mesh),
-    forcing_()
+    forcing_(),
+    carried_()
 {
     fv::optionList& opts = fv::options::New(mesh);
     forAll(opts, i)
@@ -20,6 +22,12 @@ Foam::immersedFsi::immersedFsi(const fvMesh& mesh)
         if (f)
         {
             forcing_.append(f);
+        }
+        fv::immersedElasticForce* e =
+            dynamic_cast<fv::immersedElasticForce*>(&opts[i]);
+        if (e)
+        {
+            carried_.append(e);
         }
     }
 }
@@ -75,6 +83,10 @@ bool Foam::immersedFsi::updateForce() const
     {
         converged = f->updateForce() && converged;
     }
+    for (fv::immersedElasticForce* e : carried_)
+    {
+        e->updateForce();
+    }
     return converged;
 }
 
@@ -84,6 +96,10 @@ void Foam::immersedFsi::write() const
     for (fv::immersedForcing* f : forcing_)
     {
         f->write();
+    }
+    for (fv::immersedElasticForce* e : carried_)
+    {
+        e->write();
     }
 }
 

@@ -295,11 +295,23 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
                 continue;
             }
             switch (use.part) {
-                case StressPart::Full: P[d] = a ? m.firstPK(F[d], (*a)[d]) : m.firstPK(F[d]); break;
+                case StressPart::Full:
+                    if (deviatoricOnly_) {
+                        P[d] = a ? m.stressDeviatoric(F[d], (*a)[d]) : m.stressDeviatoric(F[d]);
+                    } else {
+                        P[d] = a ? m.firstPK(F[d], (*a)[d]) : m.firstPK(F[d]);
+                    }
+                    break;
                 case StressPart::Deviatoric:
                     P[d] = a ? m.stressDeviatoric(F[d], (*a)[d]) : m.stressDeviatoric(F[d]);
                     break;
-                case StressPart::Volumetric: P[d] = m.stressVolumetric(F[d]); break;
+                case StressPart::Volumetric:
+                    if (deviatoricOnly_) {
+                        P[d].setZero();
+                    } else {
+                        P[d] = m.stressVolumetric(F[d]);
+                    }
+                    break;
             }
         }
         if (bad != std::numeric_limits<int>::max()) {
@@ -564,6 +576,73 @@ void ExplicitSolid::correctVelocity(const std::vector<Vec3>& dv, double dt)
         vHalf_[i] += d;
         u_[i] += dt * d;
     }
+}
+
+std::vector<Vec3> ExplicitSolid::interactionForce(double dt, bool deviatoricOnly)
+{
+    if (!(dt > 0) || !std::isfinite(dt)) {
+        throw Error("ExplicitSolid::interactionForce: the step must be positive and finite, not " +
+                    std::to_string(dt));
+    }
+    if (loadUpdate_) loadUpdate_(t_);
+    std::vector<Vec3> f;
+    deviatoricOnly_ = deviatoricOnly;
+    try {
+        accelerationForces(f, dt);
+    } catch (...) {
+        deviatoricOnly_ = false;
+        throw;
+    }
+    deviatoricOnly_ = false;
+    const std::vector<Vec3> free = freeComponents();
+    const int nn = mesh_->nNodes();
+    for (int i = 0; i < nn; ++i) {
+        f[i] = f[i].cwiseProduct(free[i]);
+        if (!f[i].allFinite()) {
+            throw Error("ExplicitSolid::interactionForce: node " + std::to_string(i) +
+                        " has a non-finite force at t = " + std::to_string(t_));
+        }
+    }
+    return f;
+}
+
+void ExplicitSolid::moveWith(const std::vector<Vec3>& v, double dt)
+{
+    const int nn = mesh_->nNodes();
+    if (static_cast<int>(v.size()) != nn) {
+        throw Error("ExplicitSolid::moveWith: " + std::to_string(v.size()) + " velocities for " +
+                    std::to_string(nn) + " nodes");
+    }
+    if (!(dt > 0) || !std::isfinite(dt)) {
+        throw Error("ExplicitSolid::moveWith: the step must be positive and finite, not " +
+                    std::to_string(dt));
+    }
+    for (int i = 0; i < nn; ++i) {
+        if (!v[i].allFinite()) {
+            throw Error("ExplicitSolid::moveWith: node " + std::to_string(i) +
+                        " has a non-finite velocity at t = " + std::to_string(t_));
+        }
+    }
+    const std::vector<Vec3> u0 = u_;
+    const std::vector<Vec3> v0 = vHalf_;
+    const std::vector<Vec3> free = freeComponents();
+    for (int i = 0; i < nn; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            if (free[i][k] > 0) vHalf_[i][k] = v[i][k];
+        }
+    }
+    applyConstraints(dt);
+    for (int i = 0; i < nn; ++i) u_[i] += dt * vHalf_[i];
+    try {
+        internalForce(u_);  // throws naming an inverted element
+    } catch (...) {
+        u_ = u0;
+        vHalf_ = v0;
+        throw;
+    }
+    t_ += dt;
+    dtLast_ = dt;
+    ++nSteps_;
 }
 
 // Sub-steps of equal size within what is left of dt, re-chosen after each

@@ -92,6 +92,27 @@ public:
     // Per node, 1 for each component no constraint holds, else 0
     std::vector<Vec3> freeComponents() const;
 
+    // --- the fluid carrying the solid (IFEM) --------------------------------
+    // For an immersed coupling in which the fluid carries the solid's mass
+    // and the solid moves with the fluid's velocity (immersed finite element
+    // method: Zhang, Gerstenberger, Wang & Liu, CMAME 193:2051, 2004, Eqs.
+    // 8-10; the paper's Eq. 4 with the fictitious fluid as dense as the
+    // solid). interactionForce() is the force the solid's stress, its loads
+    // and contact exert at the current state, f_ext + m g - f_int(u + beta v)
+    // + f_contact (Eq. 42 without the inertia), zero in the components a
+    // constraint holds (the support takes it). With deviatoricOnly the
+    // volumetric stress is left out of f_int: an incompressible solid's
+    // pressure is the fluid's, which the fluid's projection already holds
+    // (Zhang et al., Eq. 10), and the bulk modulus would only add the
+    // stiffest modes. dt: the step the contact's damping is taken over.
+    std::vector<Vec3> interactionForce(double dt, bool deviatoricOnly);
+    // Moves every node component no constraint holds by dt v and sets its
+    // velocity to v; constrained components follow their constraint. Time
+    // and step count advance by dt and one step. Throws naming the node on
+    // a wrong size or a non-finite velocity, and on an element it inverts
+    // (the state then is the one before the call).
+    void moveWith(const std::vector<Vec3>& v, double dt);
+
     // --- fibre directions (fibre-reinforced materials) --------------------
     // One direction per element in the reference configuration (normalised
     // here; a zero or non-finite one throws naming the element). Each
@@ -243,6 +264,7 @@ private:
     mutable std::vector<Vec3> work_;
     std::vector<Vec3> x_;  // current coordinates, for the contact search
     std::vector<Vec3> uDamped_;  // u + beta v (stiffness damping)
+    bool deviatoricOnly_ = false;  // interactionForce(): no volumetric stress
     // the stable step of omega_max^2 with safety and stiffness damping
     double stepOfOmega2(double omega2) const;
     std::vector<Constraint> constraints_;

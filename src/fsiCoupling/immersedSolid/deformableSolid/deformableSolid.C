@@ -602,6 +602,65 @@ void Foam::immersedSolids::deformable::correctVelocity
 }
 
 
+bool Foam::immersedSolids::deformable::interactionForce
+(
+    const scalar dt,
+    const bool deviatoricOnly,
+    vectorField& f,
+    string& why
+)
+{
+    std::vector<smoothedSolid::Vec3>& fe = solid_->externalForce();
+    forAll(externalForce_, i)
+    {
+        fe[i] = toVec3(externalForce_[i]);
+    }
+    try
+    {
+        const std::vector<smoothedSolid::Vec3> fs =
+            solid_->interactionForce(dt, deviatoricOnly);
+        f.setSize(fs.size());
+        forAll(f, i)
+        {
+            f[i] = vector(fs[i](0), fs[i](1), fs[i](2));
+        }
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        why = err.what();
+        return false;
+    }
+    return true;
+}
+
+
+bool Foam::immersedSolids::deformable::tryMoveWith
+(
+    const vectorField& v,
+    const scalar dt,
+    string& why
+)
+{
+    std::vector<smoothedSolid::Vec3> d(v.size());
+    forAll(v, i)
+    {
+        d[i] = toVec3(v[i]);
+    }
+    try
+    {
+        solid_->moveWith(d, dt);
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        why = err.what();
+        return false;
+    }
+    time_ += dt;
+    fromSolid();
+    return true;
+}
+
+
 void Foam::immersedSolids::deformable::write(const bool force) const
 {
     if (vtu_ && (force || runTime_.writeTime()) && Pstream::master())

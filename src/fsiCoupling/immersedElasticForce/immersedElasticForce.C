@@ -1,0 +1,526 @@
+/*---------------------------------------------------------------------------*\
+    isfem: immersed smoothed finite element method (fsiCoupling)
+\*---------------------------------------------------------------------------*/
+
+#include "immersedElasticForce.H"
+#include "deformableSolid.H"
+#include "fvMatrices.H"
+#include "wallPolyPatch.H"
+#include "tetIndices.H"
+#include "clockTime.H"
+#include "syncTools.H"
+#include "addToRunTimeSelectionTable.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+namespace fv
+{
+    defineTypeNameAndDebug(immersedElasticForce, 0);
+    addToRunTimeSelectionTable(option, immersedElasticForce, dictionary);
+}
+}
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::fv::immersedElasticForce::setPointData()
+{
+    const scalarField& V = mesh_.V();
+    const labelListList& pointCells = mesh_.pointCells();
+    pointVolume_.setSize(mesh_.nPoints());
+    forAll(pointCells, pointi)
+    {
+        scalar sum = 0;
+        for (const label celli : pointCells[pointi])
+        {
+            sum += V[celli];
+        }
+        pointVolume_[pointi] = sum;
+    }
+    syncTools::syncPointList(mesh_, pointVolume_, plusEqOp<scalar>(), 0.0);
+
+    wallPoint_.setSize(mesh_.nPoints());
+    wallPoint_ = false;
+    for (const polyPatch& pp : mesh_.boundaryMesh())
+    {
+        if (isA<wallPolyPatch>(pp))
+        {
+            for (const label pointi : pp.meshPoints())
+            {
+                wallPoint_[pointi] = true;
+            }
+        }
+    }
+    syncTools::syncPointList(mesh_, wallPoint_, orEqOp<bool>(), false);
+
+    bounds_ = mesh_.bounds();
+    if (mesh_.nCells())
+    {
+        bounds_.inflate(0.01);
+    }
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::pointVelocity
+(
+    const vectorField& u
+) const
+{
+    const scalarField& V = mesh_.V();
+    const labelListList& pointCells = mesh_.pointCells();
+    tmp<vectorField> tup(new vectorField(mesh_.nPoints(), Zero));
+    vectorField& up = tup.ref();
+    forAll(pointCells, pointi)
+    {
+        if (wallPoint_[pointi])
+        {
+            continue;
+        }
+        for (const label celli : pointCells[pointi])
+        {
+            up[pointi] += V[celli]*u[celli];
+        }
+    }
+    syncTools::syncPointList(mesh_, up, plusEqOp<vector>(), vector::zero);
+    forAll(up, pointi)
+    {
+        up[pointi] =
+            wallPoint_[pointi] ? vector::zero : up[pointi]/pointVolume_[pointi];
+    }
+    return tup;
+}
+
+
+Foam::label Foam::fv::immersedElasticForce::locate
+(
+    const point& x,
+    const label hint
+) const
+{
+    if (hint >= 0)
+    {
+        if (mesh_.pointInCell(x, hint, polyMesh::CELL_TETS))
+        {
+            return hint;
+        }
+        for (const label nbr : mesh_.cellCells()[hint])
+        {
+            if (mesh_.pointInCell(x, nbr, polyMesh::CELL_TETS))
+            {
+                return nbr;
+            }
+        }
+    }
+    if (!bounds_.contains(x))
+    {
+        return -1;
+    }
+    return search_->findCell(x, hint, true);
+}
+
+
+void Foam::fv::immersedElasticForce::updateStencils()
+{
+    const pointField& x = solidPtr_->points();
+    const label n = x.size();
+
+    // the local cell of every free node, then the lowest rank holding it
+    labelList rank(n, Pstream::nProcs());
+    forAll(x, i)
+    {
+        nodeCell_[i] = -1;
+        if (cmptSum(free_[i]) == 0)
+        {
+            rank[i] = -1;
+            continue;
+        }
+        const label celli = locate(x[i], hint_[i]);
+        if (celli >= 0)
+        {
+            nodeCell_[i] = celli;
+            hint_[i] = celli;
+            rank[i] = Pstream::myProcNo();
+        }
+    }
+    Pstream::listCombineGather(rank, minEqOp<label>());
+    Pstream::listCombineScatter(rank);
+
+    outside_ = 0;
+    forAll(x, i)
+    {
+        if (rank[i] == Pstream::nProcs())
+        {
+            // a free node outside the fluid (through a wall, or on the
+            // root beside the attachment): the wall holds it, no slip,
+            // and takes its force
+            ++outside_;
+        }
+        if (rank[i] != Pstream::myProcNo())
+        {
+            nodeCell_[i] = -1;
+            continue;
+        }
+        const label celli = nodeCell_[i];
+        label tetFacei = -1;
+        label tetPti = -1;
+        mesh_.findTetFacePt(celli, x[i], tetFacei, tetPti);
+        if (tetFacei < 0)
+        {
+            // on the cell's boundary, outside its tets by round-off: the
+            // nearest tet, the weights clamped
+            scalar best = GREAT;
+            for (const label facei : mesh_.cells()[celli])
+            {
+                const face& f = mesh_.faces()[facei];
+                for (label tetPt = 1; tetPt < f.size() - 1; ++tetPt)
+                {
+                    const tetIndices t(celli, facei, tetPt);
+                    const scalar d =
+                        mag(t.tet(mesh_).nearestPoint(x[i]).rawPoint() - x[i]);
+                    if (d < best)
+                    {
+                        best = d;
+                        tetFacei = facei;
+                        tetPti = tetPt;
+                    }
+                }
+            }
+        }
+        const tetIndices tetIs(celli, tetFacei, tetPti);
+        barycentric b = tetIs.tet(mesh_).pointToBarycentric(x[i]);
+        scalar sum = 0;
+        for (direction k = 0; k < 4; ++k)
+        {
+            b[k] = max(b[k], scalar(0));
+            sum += b[k];
+        }
+        const triFace tri(tetIs.faceTriIs(mesh_));
+        for (direction k = 0; k < 4; ++k)
+        {
+            nodeWeights_[i][k] = b[k]/max(sum, VSMALL);
+        }
+        for (direction k = 0; k < 3; ++k)
+        {
+            nodePoints_[i][k] = tri[k];
+        }
+    }
+}
+
+
+void Foam::fv::immersedElasticForce::spreadForce()
+{
+    const scalar dt = mesh_.time().deltaTValue();
+    vectorField& F = nodeForce_;
+    string why;
+    if (!solid_->interactionForce(dt, deviatoricOnly_, F, why))
+    {
+        FatalErrorInFunction
+            << "fvOption " << name_ << ": the immersed solid failed at time "
+            << mesh_.time().timeName() << ": " << why.c_str()
+            << "; the last written time is kept. Reduce maxDeltaT in"
+            << " system/controlDict (the leaflets' stiffness limits the"
+            << " step of this coupling)" << exit(FatalError);
+    }
+
+    // the transpose of nodeVelocity(): the cell centre's share to the
+    // cell, the points' shares over the volume of the points' cells
+    const scalarField& V = mesh_.V();
+    vectorField& s = force_.field();
+    s = Zero;
+    vectorField pointF(mesh_.nPoints(), Zero);
+    vector total(Zero);
+    forAll(F, i)
+    {
+        const label celli = nodeCell_[i];
+        if (celli < 0)
+        {
+            continue;
+        }
+        total += F[i];
+        s[celli] += nodeWeights_[i][0]*F[i]/(rhoFluid_*V[celli]);
+        for (direction k = 0; k < 3; ++k)
+        {
+            pointF[nodePoints_[i][k]] += nodeWeights_[i][k + 1]*F[i];
+        }
+    }
+    syncTools::syncPointList(mesh_, pointF, plusEqOp<vector>(), vector::zero);
+
+    fluidForce_ = Zero;
+    const labelListList& pointCells = mesh_.pointCells();
+    forAll(pointF, pointi)
+    {
+        if (wallPoint_[pointi] || pointF[pointi] == vector::zero)
+        {
+            continue;
+        }
+        const vector d = pointF[pointi]/(rhoFluid_*pointVolume_[pointi]);
+        for (const label celli : pointCells[pointi])
+        {
+            s[celli] += d;
+        }
+    }
+    forAll(s, celli)
+    {
+        fluidForce_ += rhoFluid_*V[celli]*s[celli];
+    }
+    reduce(fluidForce_, sumOp<vector>());
+    reduce(total, sumOp<vector>());
+    wallForce_ = total - fluidForce_;
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::fv::immersedElasticForce::immersedElasticForce
+(
+    const word& name,
+    const word& modelType,
+    const dictionary& dict,
+    const fvMesh& mesh
+)
+:
+    option(name, modelType, dict, mesh),
+    solidPtr_(immersedSolid::New(mesh.time())),
+    solid_(dynamic_cast<immersedSolids::deformable*>(solidPtr_.get())),
+    rhoFluid_(0),
+    deviatoricOnly_(true),
+    free_(),
+    nodeCell_(),
+    hint_(),
+    nodePoints_(),
+    nodeWeights_(),
+    pointVolume_(),
+    wallPoint_(),
+    search_(),
+    bounds_(),
+    nodeForce_(),
+    force_
+    (
+        IOobject
+        (
+            "immersedElasticForce",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE
+        ),
+        mesh,
+        dimensionedVector(dimAcceleration, Zero)
+    ),
+    fluidForce_(Zero),
+    wallForce_(Zero),
+    outside_(0),
+    updateIndex_(mesh.time().timeIndex()),
+    probes_(solidPtr_()),
+    solidTime_(0),
+    searchTime_(0),
+    transferTime_(0)
+{
+    read(dict);
+
+    if (!solid_)
+    {
+        FatalIOErrorInFunction(solidPtr_->dict())
+            << "fvOption " << name_ << " (type " << typeName << ") moves a"
+            << " deformable solid with the fluid; " << solidPtr_->dict().name()
+            << " has type " << solidPtr_->type() << ": set type deformable,"
+            << " or use fvOption type immersedForcing for a rigid solid"
+            << exit(FatalIOError);
+    }
+
+    // the fluid carries the solid's mass: as dense as the fluid, or the
+    // interaction force would need the inertia -(rho_s - rho_f) dv/dt
+    const scalar rhoSolid =
+        solidPtr_->dict().subDict("material").get<scalar>("rho");
+    if (mag(rhoSolid - rhoFluid_) > 1e-6*rhoFluid_)
+    {
+        FatalIOErrorInFunction(solidPtr_->dict())
+            << "fvOption " << name_ << " (type " << typeName << "): the"
+            << " fluid carries the solid's mass, so the solid must be as"
+            << " dense as the fluid: material rho " << rhoSolid << " in "
+            << solidPtr_->dict().name() << " against rhoFluid " << rhoFluid_
+            << " in the fvOption. Set them equal (blood and leaflets:"
+            << " 1000), or use type immersedForcing for a denser solid"
+            << exit(FatalIOError);
+    }
+
+    const label n = solidPtr_->nPoints();
+    free_ = solidPtr_->freeComponents();
+    nodeCell_.setSize(n, -1);
+    hint_.setSize(n, -1);
+    nodePoints_.setSize(n);
+    nodeWeights_.setSize(n);
+
+    // A restart: the solid's state of the start time
+    const fileName stateDir
+    (
+        mesh.time().timePath()/"uniform"/"immersedSolid"
+    );
+    if (solidPtr_->readState(stateDir))
+    {
+        Info<< type() << ' ' << name_ << ": solid state read from "
+            << stateDir << " (t = " << solidPtr_->time() << ")" << endl;
+    }
+    else
+    {
+        Info<< type() << ' ' << name_ << ": no solid state in " << stateDir
+            << ": the solid starts from its mesh, at rest" << endl;
+    }
+
+    setPointData();
+    search_.reset(new meshSearch(mesh, polyMesh::CELL_TETS));
+    updateStencils();
+    spreadForce();
+
+    label fixedNodes = 0;
+    forAll(free_, i)
+    {
+        if (cmptSum(free_[i]) == 0)
+        {
+            ++fixedNodes;
+        }
+    }
+    Info<< type() << ' ' << name_ << ": " << n << " nodes ("
+        << fixedNodes << " held), " << solidPtr_->nElements()
+        << " elements; " << outside_ << " free nodes outside the fluid mesh"
+        << " (taken in their nearest cell); force on the fluid "
+        << fluidForce_ << " N, on the walls " << wallForce_ << " N" << nl
+        << endl;
+}
+
+
+Foam::fv::immersedElasticForce::~immersedElasticForce()
+{}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
+(
+    const volVectorField& U
+) const
+{
+    tmp<vectorField> tv(new vectorField(solidPtr_->nPoints(), Zero));
+    vectorField& v = tv.ref();
+    const vectorField& u = U.primitiveField();
+    const vectorField up(pointVelocity(u));
+    forAll(v, i)
+    {
+        const label celli = nodeCell_[i];
+        if (celli < 0)
+        {
+            continue;
+        }
+        v[i] = nodeWeights_[i][0]*u[celli];
+        for (direction k = 0; k < 3; ++k)
+        {
+            v[i] += nodeWeights_[i][k + 1]*up[nodePoints_[i][k]];
+        }
+    }
+    Pstream::listCombineGather(v, plusEqOp<vector>());
+    Pstream::listCombineScatter(v);
+    return tv;
+}
+
+
+void Foam::fv::immersedElasticForce::updateForce()
+{
+    const Time& runTime = mesh_.time();
+    if (updateIndex_ == runTime.timeIndex())
+    {
+        return;
+    }
+    updateIndex_ = runTime.timeIndex();
+    const scalar dt = runTime.deltaTValue();
+
+    // x^{n+1} = x^n + dt v(u^{n+1}) (Zhang et al. 2004, Eq. 12)
+    clockTime clock;
+    const volVectorField& U =
+        mesh_.lookupObject<volVectorField>(fieldNames_[0]);
+    const vectorField v(nodeVelocity(U));
+    string why;
+    if (!solid_->tryMoveWith(v, dt, why))
+    {
+        FatalErrorInFunction
+            << "fvOption " << name_ << ": the immersed solid failed at time "
+            << runTime.timeName() << ": " << why.c_str()
+            << "; the last written time is kept. Reduce maxDeltaT in"
+            << " system/controlDict (the leaflets' stiffness limits the"
+            << " step of this coupling)" << exit(FatalError);
+    }
+    const scalar tMove = clock.timeIncrement();
+
+    updateStencils();
+    searchTime_ += clock.timeIncrement();
+
+    spreadForce();
+    const scalar tForce = clock.timeIncrement();
+    solidTime_ += tMove + tForce;
+
+    scalar vMax = 0;
+    forAll(v, i)
+    {
+        vMax = max(vMax, mag(v[i]));
+    }
+    Info<< type() << ' ' << name_ << ": force on the fluid " << fluidForce_
+        << " N, on the walls " << wallForce_ << " N; fastest node "
+        << vMax << " m/s";
+    if (outside_)
+    {
+        Info<< "; " << outside_ << " free nodes outside the fluid mesh";
+    }
+    Info<< nl << "    time: solid " << solidTime_ << " s, search "
+        << searchTime_ << " s" << endl;
+}
+
+
+void Foam::fv::immersedElasticForce::write()
+{
+    const Time& runTime = mesh_.time();
+    probes_.write(solidPtr_(), runTime);
+    if (!runTime.writeTime())
+    {
+        return;
+    }
+    solidPtr_->writeState(runTime.timePath()/"uniform"/"immersedSolid");
+    solidPtr_->write();
+}
+
+
+void Foam::fv::immersedElasticForce::addSup
+(
+    fvMatrix<vector>& eqn,
+    const label fieldi
+)
+{
+    eqn += force_;
+}
+
+
+bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
+{
+    if (!option::read(dict))
+    {
+        return false;
+    }
+    if (!coeffs_.readIfPresent("fields", fieldNames_))
+    {
+        fieldNames_ = wordList(1, word("U"));
+    }
+    applied_.setSize(fieldNames_.size(), false);
+    rhoFluid_ = coeffs_.get<scalar>("rhoFluid");
+    if (!(rhoFluid_ > 0))
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": rhoFluid " << rhoFluid_
+            << " must be positive (the fluid's density in kg/m^3)"
+            << exit(FatalIOError);
+    }
+    deviatoricOnly_ = coeffs_.getOrDefault<bool>("deviatoricOnly", true);
+    return true;
+}
+
+
+// ************************************************************************* //
