@@ -147,16 +147,59 @@ void Foam::fv::immersedElasticForce::updateStencils()
     Pstream::listCombineGather(rank, minEqOp<label>());
     Pstream::listCombineScatter(rank);
 
+    // a free node outside the fluid (beside the faceted root wall, which
+    // cuts inside the true wall where it is concave): its nearest cell's
+    // stencil, the weights clamped to that cell's nearest tet, so that it
+    // follows the fluid beside it (and the wall contact pushes it back);
+    // the rank with the nearest cell centre takes it
     outside_ = 0;
+    scalarField nearest(n, GREAT);
+    labelList nearestCell(n, -1);
     forAll(x, i)
     {
         if (rank[i] == Pstream::nProcs())
         {
-            // a free node outside the fluid (through a wall, or on the
-            // root beside the attachment): the wall holds it, no slip,
-            // and takes its force
             ++outside_;
+            if (mesh_.nCells())
+            {
+                const label c =
+                    search_->findNearestCell(x[i], hint_[i], true);
+                nearestCell[i] = c;
+                nearest[i] = mag(mesh_.cellCentres()[c] - x[i]);
+            }
         }
+    }
+    if (outside_)
+    {
+        scalarField best(nearest);
+        Pstream::listCombineGather(best, minEqOp<scalar>());
+        Pstream::listCombineScatter(best);
+        labelList owner(n, Pstream::nProcs());
+        forAll(x, i)
+        {
+            if (nearestCell[i] >= 0 && nearest[i] <= best[i])
+            {
+                owner[i] = Pstream::myProcNo();
+            }
+        }
+        Pstream::listCombineGather(owner, minEqOp<label>());
+        Pstream::listCombineScatter(owner);
+        forAll(x, i)
+        {
+            if (rank[i] == Pstream::nProcs())
+            {
+                rank[i] = owner[i];
+                if (owner[i] == Pstream::myProcNo())
+                {
+                    nodeCell_[i] = nearestCell[i];
+                    hint_[i] = nearestCell[i];
+                }
+            }
+        }
+    }
+
+    forAll(x, i)
+    {
         if (rank[i] != Pstream::myProcNo())
         {
             nodeCell_[i] = -1;
@@ -168,8 +211,8 @@ void Foam::fv::immersedElasticForce::updateStencils()
         mesh_.findTetFacePt(celli, x[i], tetFacei, tetPti);
         if (tetFacei < 0)
         {
-            // on the cell's boundary, outside its tets by round-off: the
-            // nearest tet, the weights clamped
+            // outside the cell's tets (outside the fluid, or by round-off
+            // on the cell's boundary): the nearest tet, the weights clamped
             scalar best = GREAT;
             for (const label facei : mesh_.cells()[celli])
             {
@@ -285,7 +328,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     solidPtr_(immersedSolid::New(mesh.time())),
     solid_(dynamic_cast<immersedSolids::deformable*>(solidPtr_.get())),
     rhoFluid_(0),
-    deviatoricOnly_(true),
+    deviatoricOnly_(false),
     free_(),
     nodeCell_(),
     hint_(),
@@ -518,7 +561,7 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << " must be positive (the fluid's density in kg/m^3)"
             << exit(FatalIOError);
     }
-    deviatoricOnly_ = coeffs_.getOrDefault<bool>("deviatoricOnly", true);
+    deviatoricOnly_ = coeffs_.getOrDefault<bool>("deviatoricOnly", false);
     return true;
 }
 

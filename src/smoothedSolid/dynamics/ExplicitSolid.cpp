@@ -447,7 +447,12 @@ void ExplicitSolid::accelerationForces(std::vector<Vec3>& f, double dt)
         const auto& X = mesh_->coordinates();
 #pragma omp parallel for schedule(static)
         for (int i = 0; i < nn; ++i) x_[i] = X[i] + u_[i];
-        maxPenetration_ = contact_->addForces(*mesh_, x_, vHalf_, dt, nodeOmega2_, f,
+        // carried by a fluid (interactionForce()), the elements' own stable
+        // step does not bound this step, the fluid's mass does: the springs
+        // get the whole budget of dt with the nodes' own mass (conservative)
+        if (carried_) zeroOmega2_.assign(nn, 0.0);
+        maxPenetration_ = contact_->addForces(*mesh_, x_, vHalf_, dt,
+                                              carried_ ? zeroOmega2_ : nodeOmega2_, f,
                                               contactPressure_);
     }
 }
@@ -587,13 +592,16 @@ std::vector<Vec3> ExplicitSolid::interactionForce(double dt, bool deviatoricOnly
     if (loadUpdate_) loadUpdate_(t_);
     std::vector<Vec3> f;
     deviatoricOnly_ = deviatoricOnly;
+    carried_ = true;
     try {
         accelerationForces(f, dt);
     } catch (...) {
         deviatoricOnly_ = false;
+        carried_ = false;
         throw;
     }
     deviatoricOnly_ = false;
+    carried_ = false;
     const std::vector<Vec3> free = freeComponents();
     const int nn = mesh_->nNodes();
     for (int i = 0; i < nn; ++i) {

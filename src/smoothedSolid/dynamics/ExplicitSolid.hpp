@@ -104,7 +104,11 @@ public:
     // volumetric stress is left out of f_int: an incompressible solid's
     // pressure is the fluid's, which the fluid's projection already holds
     // (Zhang et al., Eq. 10), and the bulk modulus would only add the
-    // stiffest modes. dt: the step the contact's damping is taken over.
+    // stiffest modes. dt: the carrying fluid's step; the contact springs
+    // are bounded by it with the nodes' own mass, not by the elements'
+    // stable step, which the fluid's larger mass makes irrelevant (with the
+    // elements' bound, the springs would get no budget at a step longer
+    // than the solid's own stable step, and contact would do nothing).
     std::vector<Vec3> interactionForce(double dt, bool deviatoricOnly);
     // Moves every node component no constraint holds by dt v and sets its
     // velocity to v; constrained components follow their constraint. Time
@@ -265,6 +269,9 @@ private:
     std::vector<Vec3> x_;  // current coordinates, for the contact search
     std::vector<Vec3> uDamped_;  // u + beta v (stiffness damping)
     bool deviatoricOnly_ = false;  // interactionForce(): no volumetric stress
+    bool carried_ = false;         // interactionForce(): contact springs not
+                                   // bounded by the elements' stable step
+    std::vector<double> zeroOmega2_;
     // the stable step of omega_max^2 with safety and stiffness damping
     double stepOfOmega2(double omega2) const;
     std::vector<Constraint> constraints_;
