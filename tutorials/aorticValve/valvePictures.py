@@ -57,7 +57,7 @@ What it reads (paths relative to the case, options to change them):
 Times: --times picks written times (nearest within 1e-6 relative, else
 skipped with a message); default: up to --count (6) spread evenly over the
 times that have a plane (or, for the leaflets, a solid file). The orifice's
-times: --orifice-times, else the times of the largest and the smallest open
+times: --orifice-times, else the times of the largest and (after it) the smallest open
 area of the metrics file (a column whose name holds 'area' or 'orifice'),
 else the first and last solid times; each taken at the nearest solid time.
 
@@ -979,10 +979,17 @@ def main():
         if args.orifice_times:
             chosen = [float(v) for v in args.orifice_times.split(",")][:2]
         elif table is not None and len(table):
-            col = [i for i, n in enumerate(names) if i and re.search("area|orifice", n, re.I)]
+            col = [i for i, n in enumerate(names)
+                   if i and re.search("GOA|area|orifice", n, re.I)]
             if col:
+                # the most open, and the most closed after it (the valve
+                # starts closed)
                 a = table[:, col[0]]
-                chosen = [table[int(np.argmax(a)), 0], table[int(np.argmin(a)), 0]]
+                i_open = int(np.argmax(a))
+                i_closed = i_open + int(np.argmin(a[i_open:]))
+                if i_closed == i_open:
+                    i_closed = int(np.argmin(a))
+                chosen = [table[i_open, 0], table[i_closed, 0]]
         if chosen is None:
             chosen = [min(solids), max(solids)]
         states = []

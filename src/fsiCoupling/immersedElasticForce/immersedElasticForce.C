@@ -45,7 +45,7 @@ void Foam::fv::immersedElasticForce::setPointData()
     wallPoint_ = false;
     for (const polyPatch& pp : mesh_.boundaryMesh())
     {
-        if (isA<wallPolyPatch>(pp))
+        if (noSlipPoints_ && isA<wallPolyPatch>(pp))
         {
             for (const label pointi : pp.meshPoints())
             {
@@ -54,6 +54,35 @@ void Foam::fv::immersedElasticForce::setPointData()
         }
     }
     syncTools::syncPointList(mesh_, wallPoint_, orEqOp<bool>(), false);
+
+    // A cell's centre carries its own value unless the cell is much
+    // smaller than the cells around it: with its own value a node's force
+    // density in it is F/(rho V_c), and a sliver tet beside the root wall
+    // (checkMesh: determinant below 1e-3) blew the fluid up there; such a
+    // cell's centre takes the mean of its points', whose force densities
+    // are bounded by the points' cell volumes
+    ownCentre_.setSize(mesh_.nCells());
+    label nSmall = 0;
+    forAll(V, celli)
+    {
+        const labelList& cPoints = mesh_.cellPoints()[celli];
+        scalar around = 0;
+        label count = 0;
+        for (const label pointi : cPoints)
+        {
+            around += pointVolume_[pointi];
+            count += mesh_.pointCells()[pointi].size();
+        }
+        // the mean volume of the cells around (point-neighbours, all ranks
+        // for the points' volumes; the counts are this rank's: a bound)
+        const scalar mean = around/max(count, label(1));
+        ownCentre_[celli] = (V[celli] >= smallCell_*mean);
+        if (!ownCentre_[celli])
+        {
+            ++nSmall;
+        }
+    }
+    smallCells_ = returnReduce(nSmall, sumOp<label>());
 
     bounds_ = mesh_.bounds();
     if (mesh_.nCells())
@@ -131,7 +160,7 @@ void Foam::fv::immersedElasticForce::updateStencils()
     forAll(x, i)
     {
         nodeCell_[i] = -1;
-        if (cmptSum(free_[i]) == 0)
+        if (cmptSum(free_[i]) == 0 && !tethered_[i])
         {
             rank[i] = -1;
             continue;
@@ -252,7 +281,133 @@ void Foam::fv::immersedElasticForce::updateStencils()
 }
 
 
-void Foam::fv::immersedElasticForce::spreadForce()
+void Foam::fv::immersedElasticForce::spread
+(
+    const vectorField& F,
+    vectorField& s
+) const
+{
+    // the transpose of gather(): the cell centre's share to the cell (or
+    // to its points equally, setPointData()), every point's share over the
+    // volume of the point's cells; s per unit fluid mass
+    const scalarField& V = mesh_.V();
+    s.setSize(mesh_.nCells());
+    s = Zero;
+    vectorField pointF(mesh_.nPoints(), Zero);
+    forAll(F, i)
+    {
+        const label celli = nodeCell_[i];
+        if (celli < 0)
+        {
+            continue;
+        }
+        if (ownCentre_[celli])
+        {
+            s[celli] += nodeWeights_[i][0]*F[i]/(rhoFluid_*V[celli]);
+        }
+        else
+        {
+            const labelList& cPoints = mesh_.cellPoints()[celli];
+            const vector Fc = nodeWeights_[i][0]*F[i]/cPoints.size();
+            for (const label pointi : cPoints)
+            {
+                pointF[pointi] += Fc;
+            }
+        }
+        for (direction k = 0; k < 3; ++k)
+        {
+            pointF[nodePoints_[i][k]] += nodeWeights_[i][k + 1]*F[i];
+        }
+    }
+    syncTools::syncPointList(mesh_, pointF, plusEqOp<vector>(), vector::zero);
+
+    const labelListList& pointCells = mesh_.pointCells();
+    forAll(pointF, pointi)
+    {
+        if (wallPoint_[pointi] || pointF[pointi] == vector::zero)
+        {
+            continue;
+        }
+        const vector d = pointF[pointi]/(rhoFluid_*pointVolume_[pointi]);
+        for (const label celli : pointCells[pointi])
+        {
+            s[celli] += d;
+        }
+    }
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::gather
+(
+    const vectorField& u
+) const
+{
+    tmp<vectorField> tv(new vectorField(solidPtr_->nPoints(), Zero));
+    vectorField& v = tv.ref();
+    const vectorField up(pointVelocity(u));
+    forAll(v, i)
+    {
+        const label celli = nodeCell_[i];
+        if (celli < 0)
+        {
+            continue;
+        }
+        // the cell centre's value: the cell's own, or in a cell much
+        // smaller than those around it (a sliver) the mean of its points'
+        // (setPointData())
+        vector uc(Zero);
+        if (ownCentre_[celli])
+        {
+            uc = u[celli];
+        }
+        else
+        {
+            const labelList& cPoints = mesh_.cellPoints()[celli];
+            for (const label pointi : cPoints)
+            {
+                uc += up[pointi];
+            }
+            uc /= cPoints.size();
+        }
+        v[i] = nodeWeights_[i][0]*uc;
+        for (direction k = 0; k < 3; ++k)
+        {
+            v[i] += nodeWeights_[i][k + 1]*up[nodePoints_[i][k]];
+        }
+    }
+    Pstream::listCombineGather(v, plusEqOp<vector>());
+    Pstream::listCombineScatter(v);
+    return tv;
+}
+
+
+void Foam::fv::immersedElasticForce::setTetherMobility()
+{
+    // D_i = sum_c w_ic W_c/(rho V_c), W_c = sum_j w_jc over the tethered
+    // nodes: the row sums of the tethers' mobility W M^-1 W^T (the fluid
+    // velocity a unit force on every tether gives at each), an upper
+    // bound of its largest eigenvalue (Gershgorin), so that the feedback
+    // below is stable for relaxation <= 1
+    vectorField unit(solidPtr_->nPoints(), Zero);
+    forAll(unit, i)
+    {
+        if (tethered_[i])
+        {
+            unit[i] = vector::one;
+        }
+    }
+    vectorField s;
+    spread(unit, s);
+    const vectorField D(gather(s));
+    tetherMobility_.setSize(D.size());
+    forAll(D, i)
+    {
+        tetherMobility_[i] = tethered_[i] ? D[i].x() : 0;
+    }
+}
+
+
+void Foam::fv::immersedElasticForce::spreadForce(const vectorField& v)
 {
     const scalar dt = mesh_.time().deltaTValue();
     vectorField& F = nodeForce_;
@@ -267,43 +422,40 @@ void Foam::fv::immersedElasticForce::spreadForce()
             << " step of this coupling)" << exit(FatalError);
     }
 
-    // the transpose of nodeVelocity(): the cell centre's share to the
-    // cell, the points' shares over the volume of the points' cells
-    const scalarField& V = mesh_.V();
+    // The tethers: a node held still (the attachment, sewn to the root)
+    // holds the fluid at rest where it is. The fluid at it would otherwise
+    // not see the leaflet there (its force goes to the support) and flow
+    // through the attachment band. Feedback on the fluid's velocity v at
+    // the node and its drift xi (the target points of immersed boundary
+    // methods; Peskin, Acta Numerica 11:479, 2002, Sect. 6):
+    //     F_i = -(alpha v_i + beta xi_i/dt)/(dt D_i),  xi_i += dt v_i
+    tetherForce_ = Zero;
+    forAll(F, i)
+    {
+        if (tethered_[i] && tetherMobility_[i] > 0)
+        {
+            tetherDrift_[i] += dt*v[i];
+            const vector Ft =
+                -(tetherRelaxation_*v[i] + tetherStiffness_*tetherDrift_[i]/dt)
+               /(dt*tetherMobility_[i]);
+            F[i] += Ft;
+            tetherForce_ += Ft;
+        }
+    }
+
     vectorField& s = force_.field();
-    s = Zero;
-    vectorField pointF(mesh_.nPoints(), Zero);
+    spread(F, s);
+
+    const scalarField& V = mesh_.V();
     vector total(Zero);
     forAll(F, i)
     {
-        const label celli = nodeCell_[i];
-        if (celli < 0)
+        if (nodeCell_[i] >= 0)
         {
-            continue;
-        }
-        total += F[i];
-        s[celli] += nodeWeights_[i][0]*F[i]/(rhoFluid_*V[celli]);
-        for (direction k = 0; k < 3; ++k)
-        {
-            pointF[nodePoints_[i][k]] += nodeWeights_[i][k + 1]*F[i];
+            total += F[i];
         }
     }
-    syncTools::syncPointList(mesh_, pointF, plusEqOp<vector>(), vector::zero);
-
     fluidForce_ = Zero;
-    const labelListList& pointCells = mesh_.pointCells();
-    forAll(pointF, pointi)
-    {
-        if (wallPoint_[pointi] || pointF[pointi] == vector::zero)
-        {
-            continue;
-        }
-        const vector d = pointF[pointi]/(rhoFluid_*pointVolume_[pointi]);
-        for (const label celli : pointCells[pointi])
-        {
-            s[celli] += d;
-        }
-    }
     forAll(s, celli)
     {
         fluidForce_ += rhoFluid_*V[celli]*s[celli];
@@ -338,6 +490,16 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     wallPoint_(),
     search_(),
     bounds_(),
+    ownCentre_(),
+    smallCell_(0.2),
+    noSlipPoints_(false),
+    smallCells_(0),
+    tethered_(),
+    tetherDrift_(),
+    tetherMobility_(),
+    tetherRelaxation_(0.5),
+    tetherStiffness_(0.1),
+    tetherForce_(Zero),
     nodeForce_(),
     force_
     (
@@ -412,10 +574,20 @@ Foam::fv::immersedElasticForce::immersedElasticForce
             << ": the solid starts from its mesh, at rest" << endl;
     }
 
+    tethered_.setSize(n, false);
+    tetherDrift_.setSize(n, Zero);
+    if (tetherRelaxation_ > 0 || tetherStiffness_ > 0)
+    {
+        forAll(free_, i)
+        {
+            tethered_[i] = (cmptSum(free_[i]) == 0);
+        }
+    }
     setPointData();
     search_.reset(new meshSearch(mesh, polyMesh::CELL_TETS));
     updateStencils();
-    spreadForce();
+    setTetherMobility();
+    spreadForce(vectorField(n, Zero));
 
     label fixedNodes = 0;
     forAll(free_, i)
@@ -428,7 +600,9 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     Info<< type() << ' ' << name_ << ": " << n << " nodes ("
         << fixedNodes << " held), " << solidPtr_->nElements()
         << " elements; " << outside_ << " free nodes outside the fluid mesh"
-        << " (taken in their nearest cell); force on the fluid "
+        << " (taken in their nearest cell); " << smallCells_ << " cells"
+        << " smaller than " << smallCell_ << " of the cells around them"
+        << " take their centre's value from their points; force on the fluid "
         << fluidForce_ << " N, on the walls " << wallForce_ << " N" << nl
         << endl;
 }
@@ -445,26 +619,7 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
     const volVectorField& U
 ) const
 {
-    tmp<vectorField> tv(new vectorField(solidPtr_->nPoints(), Zero));
-    vectorField& v = tv.ref();
-    const vectorField& u = U.primitiveField();
-    const vectorField up(pointVelocity(u));
-    forAll(v, i)
-    {
-        const label celli = nodeCell_[i];
-        if (celli < 0)
-        {
-            continue;
-        }
-        v[i] = nodeWeights_[i][0]*u[celli];
-        for (direction k = 0; k < 3; ++k)
-        {
-            v[i] += nodeWeights_[i][k + 1]*up[nodePoints_[i][k]];
-        }
-    }
-    Pstream::listCombineGather(v, plusEqOp<vector>());
-    Pstream::listCombineScatter(v);
-    return tv;
+    return gather(U.primitiveField());
 }
 
 
@@ -498,7 +653,7 @@ void Foam::fv::immersedElasticForce::updateForce()
     updateStencils();
     searchTime_ += clock.timeIncrement();
 
-    spreadForce();
+    spreadForce(v);
     const scalar tForce = clock.timeIncrement();
     solidTime_ += tMove + tForce;
 
@@ -508,7 +663,8 @@ void Foam::fv::immersedElasticForce::updateForce()
         vMax = max(vMax, mag(v[i]));
     }
     Info<< type() << ' ' << name_ << ": force on the fluid " << fluidForce_
-        << " N, on the walls " << wallForce_ << " N; fastest node "
+        << " N (tethers " << tetherForce_ << " N), on the walls "
+        << wallForce_ << " N; fastest node "
         << vMax << " m/s";
     if (outside_)
     {
@@ -562,6 +718,22 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << exit(FatalIOError);
     }
     deviatoricOnly_ = coeffs_.getOrDefault<bool>("deviatoricOnly", false);
+    smallCell_ = coeffs_.getOrDefault<scalar>("smallCell", 0.2);
+    noSlipPoints_ = coeffs_.getOrDefault<bool>("noSlipPoints", false);
+    tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);
+    tetherStiffness_ = coeffs_.getOrDefault<scalar>("tetherStiffness", 0.1);
+    if
+    (
+        tetherRelaxation_ < 0 || tetherRelaxation_ > 1
+     || tetherStiffness_ < 0 || tetherStiffness_ > 0.25
+    )
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": tetherRelaxation "
+            << tetherRelaxation_ << " must be in [0, 1] and tetherStiffness "
+            << tetherStiffness_ << " in [0, 0.25] (0 and 0: no tethers)"
+            << exit(FatalIOError);
+    }
     return true;
 }
 
