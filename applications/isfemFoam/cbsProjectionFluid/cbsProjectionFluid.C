@@ -124,6 +124,77 @@ Foam::cbsProjectionFluid::intermediateMomentum()
 }
 
 
+namespace
+{
+
+// fvc::reconstruct with the face tensor's eigenvalues floored at a fraction
+// of its largest: in sliver tets sum_f S_f S_f/|S_f| is nearly singular
+// and fvc::reconstruct amplified face values by up to 1e6
+Foam::tmp<Foam::volVectorField> reconstructRegular
+(
+    const Foam::surfaceScalarField& ssf,
+    const Foam::scalar floor = 0.02
+)
+{
+    using namespace Foam;
+    const fvMesh& mesh = ssf.mesh();
+    const labelUList& own = mesh.owner();
+    const labelUList& nei = mesh.neighbour();
+    const surfaceVectorField& Sf = mesh.Sf();
+    const surfaceScalarField& magSf = mesh.magSf();
+    symmTensorField T(mesh.nCells(), Zero);
+    vectorField b(mesh.nCells(), Zero);
+    forAll(own, facei)
+    {
+        const vector n = Sf[facei]/magSf[facei];
+        const symmTensor t = sqr(Sf[facei])/magSf[facei];
+        T[own[facei]] += t;
+        T[nei[facei]] += t;
+        b[own[facei]] += n*ssf[facei];
+        b[nei[facei]] += n*ssf[facei];
+    }
+    forAll(mesh.boundary(), patchi)
+    {
+        const fvsPatchScalarField& pssf = ssf.boundaryField()[patchi];
+        const vectorField& pSf = Sf.boundaryField()[patchi];
+        const scalarField& pmagSf = magSf.boundaryField()[patchi];
+        const labelUList& fc = mesh.boundary()[patchi].faceCells();
+        forAll(fc, i)
+        {
+            T[fc[i]] += sqr(pSf[i])/pmagSf[i];
+            if (pssf.size())
+            {
+                b[fc[i]] += pSf[i]/pmagSf[i]*pssf[i];
+            }
+        }
+    }
+    tmp<volVectorField> tr
+    (
+        new volVectorField
+        (
+            IOobject("reconstructRegular", mesh.time().timeName(), mesh),
+            mesh,
+            dimensionedVector(ssf.dimensions()/dimArea, Zero),
+            extrapolatedCalculatedFvPatchScalarField::typeName
+        )
+    );
+    vectorField& r = tr.ref().primitiveFieldRef();
+    forAll(T, celli)
+    {
+        // exact where T is well conditioned; else Tikhonov-regularised
+        const symmTensor& t = T[celli];
+        const scalar m = Foam::tr(t)/3;
+        const scalar q = det(t)/max(pow3(m), VSMALL);
+        const symmTensor tReg(q > floor*floor ? t : t + floor*m*I);
+        r[celli] = inv(tReg) & b[celli];
+    }
+    tr.ref().correctBoundaryConditions();
+    return tr;
+}
+
+} // End anonymous namespace
+
+
 void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
 {
     const volScalarField rAU(1.0/UEqn.A());
@@ -131,12 +202,46 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     // Intermediate velocity without pressure gradient and its
     // momentum-interpolated (Rhie-Chow) face flux
     volVectorField HbyA(constrainHbyA(rAU*UEqn.H(), U_, p_));
+
+    // A balanced body force (fv::immersedElasticForce, balancedForce yes):
+    // handed to the face fluxes, where a static pressure jump balances it
+    // exactly, and to the cells by the reconstruction of the face balance
+    // (as buoyancy in buoyantPimpleFoam); not through H/A
+    const volVectorField::Internal* fb =
+        mesh_.findObject<volVectorField::Internal>("immersedBalancedForce");
+    tmp<surfaceScalarField> tphiF;
+    if (fb)
+    {
+        HbyA.primitiveFieldRef() -= rAU.primitiveField()*fb->field();
+        volVectorField f
+        (
+            IOobject("fBalanced", mesh_.time().timeName(), mesh_),
+            mesh_,
+            dimensionedVector(fb->dimensions(), Zero),
+            zeroGradientFvPatchVectorField::typeName
+        );
+        f.primitiveFieldRef() = fb->field();
+        f.correctBoundaryConditions();
+        tphiF = fvc::interpolate(rAU)*(fvc::interpolate(f) & mesh_.Sf());
+        // no force flux through the boundary
+        for (auto& pf : tphiF.ref().boundaryFieldRef())
+        {
+            if (!pf.coupled())
+            {
+                pf = 0;
+            }
+        }
+    }
     surfaceScalarField phiHbyA
     (
         "phiHbyA",
         fvc::flux(HbyA)
       + fvc::interpolate(rAU)*fvc::ddtCorr(U_, phi_)
     );
+    if (fb)
+    {
+        phiHbyA += tphiF();
+    }
 
     // Immersed solid (fsiCoupling): its flux on the faces of the covered
     // cells, no pressure flux through them (immersedBoundary.H)
@@ -166,7 +271,7 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     {
         fvScalarMatrix pEqn
         (
-            ib
+            (ib || fb)
           ? fvm::laplacian(rAUf, p_) == fvc::div(phiHbyA)
           : fvm::laplacian(rAU, p_) == fvc::div(phiHbyA)
         );
@@ -182,6 +287,12 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
         {
             // Step III, face part: divergence-free flux
             phi_ = phiHbyA - pEqn.flux();
+            if (fb)
+            {
+                // the cells: the reconstructed face balance
+                U_ = HbyA
+                  + rAU*reconstructRegular((tphiF() - pEqn.flux())/rAUf);
+            }
         }
     }
 
@@ -190,7 +301,10 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     // Step III (paper Eq. 39): velocity correction. With an immersed solid
     // the covered cells' pressure is set for output and grad p taken with
     // the wall pressure, from one evaluation of the wall values
-    U_ = HbyA - rAU*(ib ? ib->correctPressure(p_) : fvc::grad(p_));
+    if (!fb)
+    {
+        U_ = HbyA - rAU*(ib ? ib->correctPressure(p_) : fvc::grad(p_));
+    }
     U_.correctBoundaryConditions();
     fvOptions_.correct(U_);
 }

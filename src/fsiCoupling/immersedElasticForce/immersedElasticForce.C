@@ -505,7 +505,10 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     (
         IOobject
         (
-            "immersedElasticForce",
+            dict.optionalSubDict(modelType + "Coeffs")
+               .getOrDefault<bool>("balancedForce", false)
+          ? "immersedBalancedForce"
+          : "immersedElasticForce",
             mesh.time().timeName(),
             mesh,
             IOobject::NO_READ,
