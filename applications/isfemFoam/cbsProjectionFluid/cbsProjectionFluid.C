@@ -202,6 +202,7 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     // Intermediate velocity without pressure gradient and its
     // momentum-interpolated (Rhie-Chow) face flux
     volVectorField HbyA(constrainHbyA(rAU*UEqn.H(), U_, p_));
+    surfaceScalarField rAUf("rAUf", fvc::interpolate(rAU));
 
     // A balanced body force (fv::immersedElasticForce, balancedForce yes):
     // handed to the face fluxes, where a static pressure jump balances it
@@ -222,7 +223,7 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
         );
         f.primitiveFieldRef() = fb->field();
         f.correctBoundaryConditions();
-        tphiF = fvc::interpolate(rAU)*(fvc::interpolate(f) & mesh_.Sf());
+        tphiF = rAUf*(fvc::interpolate(f) & mesh_.Sf());
         // no force flux through the boundary
         for (auto& pf : tphiF.ref().boundaryFieldRef())
         {
@@ -236,7 +237,7 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     (
         "phiHbyA",
         fvc::flux(HbyA)
-      + fvc::interpolate(rAU)*fvc::ddtCorr(U_, phi_)
+      + rAUf*fvc::ddtCorr(U_, phi_)
     );
     if (fb)
     {
@@ -247,7 +248,6 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     // cells, no pressure flux through them (immersedBoundary.H)
     const immersedBoundary* ib =
         mesh_.findObject<immersedBoundary>(immersedBoundary::typeName);
-    surfaceScalarField rAUf("rAUf", fvc::interpolate(rAU));
     if (ib)
     {
         // Step II's coefficient, zero on the faces of the covered cells

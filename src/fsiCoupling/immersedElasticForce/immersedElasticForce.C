@@ -159,6 +159,12 @@ void Foam::fv::immersedElasticForce::updateStencils()
     labelList rank(n, Pstream::nProcs());
     forAll(x, i)
     {
+        if (tethered_[i] && stencilsBuilt_)
+        {
+            // a tether does not move: its stencil is the first one
+            rank[i] = tetherRank_[i];
+            continue;
+        }
         nodeCell_[i] = -1;
         if (cmptSum(free_[i]) == 0 && !tethered_[i])
         {
@@ -188,7 +194,10 @@ void Foam::fv::immersedElasticForce::updateStencils()
     {
         if (rank[i] == Pstream::nProcs())
         {
-            ++outside_;
+            if (!tethered_[i])
+            {
+                ++outside_;
+            }
             if (mesh_.nCells())
             {
                 const label c =
@@ -198,7 +207,7 @@ void Foam::fv::immersedElasticForce::updateStencils()
             }
         }
     }
-    if (outside_)
+    if (returnReduce(min(nearest) < GREAT, orOp<bool>()))
     {
         scalarField best(nearest);
         Pstream::listCombineGather(best, minEqOp<scalar>());
@@ -232,6 +241,10 @@ void Foam::fv::immersedElasticForce::updateStencils()
         if (rank[i] != Pstream::myProcNo())
         {
             nodeCell_[i] = -1;
+            continue;
+        }
+        if (tethered_[i] && stencilsBuilt_)
+        {
             continue;
         }
         const label celli = nodeCell_[i];
@@ -277,6 +290,11 @@ void Foam::fv::immersedElasticForce::updateStencils()
         {
             nodePoints_[i][k] = tri[k];
         }
+    }
+    if (!stencilsBuilt_)
+    {
+        tetherRank_ = rank;
+        stencilsBuilt_ = true;
     }
 }
 
@@ -494,13 +512,6 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     smallCell_(0.2),
     noSlipPoints_(false),
     smallCells_(0),
-    tethered_(),
-    tetherDrift_(),
-    tetherMobility_(),
-    tetherRelaxation_(0.5),
-    tetherStiffness_(0.1),
-    tetherForce_(Zero),
-    nodeForce_(),
     force_
     (
         IOobject
@@ -517,14 +528,22 @@ Foam::fv::immersedElasticForce::immersedElasticForce
         mesh,
         dimensionedVector(dimAcceleration, Zero)
     ),
+    tethered_(),
+    tetherDrift_(),
+    tetherRank_(),
+    stencilsBuilt_(false),
+    tetherMobility_(),
+    tetherRelaxation_(0.5),
+    tetherStiffness_(0.1),
+    tetherForce_(Zero),
+    nodeForce_(),
     fluidForce_(Zero),
     wallForce_(Zero),
     outside_(0),
     updateIndex_(mesh.time().timeIndex()),
     probes_(solidPtr_()),
     solidTime_(0),
-    searchTime_(0),
-    transferTime_(0)
+    searchTime_(0)
 {
     read(dict);
 

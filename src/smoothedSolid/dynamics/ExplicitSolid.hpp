@@ -113,8 +113,10 @@ public:
     // Moves every node component no constraint holds by dt v and sets its
     // velocity to v; constrained components follow their constraint. Time
     // and step count advance by dt and one step. Throws naming the node on
-    // a wrong size or a non-finite velocity, and on an element it inverts
-    // (the state then is the one before the call).
+    // a wrong size or a non-finite velocity (the state unchanged). An
+    // element the motion inverts is reported by the next force evaluation
+    // (interactionForce()), which names it: the motion does not evaluate
+    // the stress a second time.
     void moveWith(const std::vector<Vec3>& v, double dt);
 
     // --- fibre directions (fibre-reinforced materials) --------------------
