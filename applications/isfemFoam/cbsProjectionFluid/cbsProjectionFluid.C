@@ -124,77 +124,6 @@ Foam::cbsProjectionFluid::intermediateMomentum()
 }
 
 
-namespace
-{
-
-// fvc::reconstruct with the face tensor's eigenvalues floored at a fraction
-// of its largest: in sliver tets sum_f S_f S_f/|S_f| is nearly singular
-// and fvc::reconstruct amplified face values by up to 1e6
-Foam::tmp<Foam::volVectorField> reconstructRegular
-(
-    const Foam::surfaceScalarField& ssf,
-    const Foam::scalar floor = 0.02
-)
-{
-    using namespace Foam;
-    const fvMesh& mesh = ssf.mesh();
-    const labelUList& own = mesh.owner();
-    const labelUList& nei = mesh.neighbour();
-    const surfaceVectorField& Sf = mesh.Sf();
-    const surfaceScalarField& magSf = mesh.magSf();
-    symmTensorField T(mesh.nCells(), Zero);
-    vectorField b(mesh.nCells(), Zero);
-    forAll(own, facei)
-    {
-        const vector n = Sf[facei]/magSf[facei];
-        const symmTensor t = sqr(Sf[facei])/magSf[facei];
-        T[own[facei]] += t;
-        T[nei[facei]] += t;
-        b[own[facei]] += n*ssf[facei];
-        b[nei[facei]] += n*ssf[facei];
-    }
-    forAll(mesh.boundary(), patchi)
-    {
-        const fvsPatchScalarField& pssf = ssf.boundaryField()[patchi];
-        const vectorField& pSf = Sf.boundaryField()[patchi];
-        const scalarField& pmagSf = magSf.boundaryField()[patchi];
-        const labelUList& fc = mesh.boundary()[patchi].faceCells();
-        forAll(fc, i)
-        {
-            T[fc[i]] += sqr(pSf[i])/pmagSf[i];
-            if (pssf.size())
-            {
-                b[fc[i]] += pSf[i]/pmagSf[i]*pssf[i];
-            }
-        }
-    }
-    tmp<volVectorField> tr
-    (
-        new volVectorField
-        (
-            IOobject("reconstructRegular", mesh.time().timeName(), mesh),
-            mesh,
-            dimensionedVector(ssf.dimensions()/dimArea, Zero),
-            extrapolatedCalculatedFvPatchScalarField::typeName
-        )
-    );
-    vectorField& r = tr.ref().primitiveFieldRef();
-    forAll(T, celli)
-    {
-        // exact where T is well conditioned; else Tikhonov-regularised
-        const symmTensor& t = T[celli];
-        const scalar m = Foam::tr(t)/3;
-        const scalar q = det(t)/max(pow3(m), VSMALL);
-        const symmTensor tReg(q > floor*floor ? t : t + floor*m*I);
-        r[celli] = inv(tReg) & b[celli];
-    }
-    tr.ref().correctBoundaryConditions();
-    return tr;
-}
-
-} // End anonymous namespace
-
-
 void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
 {
     const volScalarField rAU(1.0/UEqn.A());
@@ -207,7 +136,8 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     // A balanced body force (fv::immersedElasticForce, balancedForce yes):
     // handed to the face fluxes, where a static pressure jump balances it
     // exactly, and to the cells by the reconstruction of the face balance
-    // (as buoyancy in buoyantPimpleFoam); not through H/A
+    // (as buoyancy in buoyantPimpleFoam); not through H/A. The flux is the
+    // adjoint of the reconstruction (balancedForceFlux.H)
     const volVectorField::Internal* fb =
         mesh_.findObject<volVectorField::Internal>("immersedBalancedForce");
     tmp<surfaceScalarField> tphiF;
@@ -223,7 +153,11 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
         );
         f.primitiveFieldRef() = fb->field();
         f.correctBoundaryConditions();
-        tphiF = rAUf*(fvc::interpolate(f) & mesh_.Sf());
+        if (!balancedFlux_.valid())
+        {
+            balancedFlux_.reset(new balancedForceFlux(mesh_));
+        }
+        tphiF = rAUf*balancedFlux_->flux(f);
         // no force flux through the boundary
         for (auto& pf : tphiF.ref().boundaryFieldRef())
         {
@@ -291,7 +225,8 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
             {
                 // the cells: the reconstructed face balance
                 U_ = HbyA
-                  + rAU*reconstructRegular((tphiF() - pEqn.flux())/rAUf);
+                  + rAU
+                   *balancedFlux_->reconstruct((tphiF() - pEqn.flux())/rAUf);
             }
         }
     }
