@@ -22,6 +22,14 @@ Closing (back pressure, dp < 0):
                      target)
 Contact: the smallest leaflet-leaflet and leaflet-wall gaps of all rows
 (negative: interpenetration) and the largest contact force.
+Curvature (from the leaflets' VTU files, VTK/solid/solid_<time>.vtu, at the
+time to open): each leaflet's mid-line, the nodes within 10 degrees of its
+centre plane (undeformed positions), averaged in 10 bands of undeformed
+radius from the attachment to the free edge, in its (radial, axial) plane;
+the mean turning of the line over its lower and upper halves. The paper's
+opening valve bends one way near the attachment and the other near the
+free edge (its curvature reverses from bottom to top): opposite signs,
+each at least 0.5 degrees per segment.
 
     valveReport.py [caseDir]
 Prints the table; exits 0 (a report, not a check).
@@ -56,6 +64,65 @@ def read(case):
     return {n: data[:, i] for i, n in enumerate(names)}
 
 
+def midline_turning(path, leaflet, bands=10, halfAngle=10.0):
+    """Mean turning (degrees per segment, sign: counter-clockwise in the
+    leaflet's (radial, axial) plane) of leaflet k's mid-line over its lower
+    (attachment) and upper (free edge) halves, from the VTU at path."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from valvePictures import read_vtk
+    vtu = read_vtk(path)
+    x = vtu["points"]
+    x0 = x - vtu["point_data"]["displacement"].reshape(-1, 3)
+    centre = np.radians(120.0 * leaflet)
+    theta0 = np.angle(np.exp(1j * (np.arctan2(x0[:, 1], x0[:, 0]) - centre)))
+    r0 = np.hypot(x0[:, 0], x0[:, 1])
+    near = np.abs(np.degrees(theta0)) < halfAngle
+    if near.sum() < 2 * bands:
+        return None
+    edges = np.linspace(r0[near].min(), r0[near].max(), bands + 1)
+    radial = x[:, 0] * np.cos(centre) + x[:, 1] * np.sin(centre)
+    line = []
+    for b in range(bands, 0, -1):         # attachment (large r0) first
+        sel = near & (r0 >= edges[b - 1]) & (r0 <= edges[b])
+        if sel.any():
+            line.append((radial[sel].mean(), x[sel, 2].mean()))
+    p = np.array(line)
+    d = np.diff(p, axis=0)
+    turn = np.degrees(np.arctan2(d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0],
+                                 (d[:-1] * d[1:]).sum(axis=1)))
+    half = len(turn) // 2
+    return turn[:half].mean(), turn[half:].mean()
+
+
+def curvature_report(case, t_open):
+    files = glob.glob(os.path.join(case, "VTK", "solid", "solid_*.vtu"))
+    times = {}
+    for f in files:
+        try:
+            times[float(os.path.basename(f)[6:-4])] = f
+        except ValueError:
+            pass
+    if not times:
+        print("  curvature: no VTK/solid/solid_<time>.vtu")
+        return
+    t = min(times, key=lambda s: abs(s - t_open))
+    out = []
+    for k in range(3):
+        r = midline_turning(times[t], k)
+        if r is None:
+            out.append("leaflet %d: too few nodes" % (k + 1))
+            continue
+        lower, upper = r
+        if min(abs(lower), abs(upper)) < 0.5:
+            shape = "a half nearly straight"
+        else:
+            shape = "reverses" if lower * upper < 0 else "one way"
+        out.append("leaflet %d %+.1f / %+.1f deg (%s)"
+                   % (k + 1, lower, upper, shape))
+    print("  curvature of the mid-lines at %.4f s, mean turning per segment"
+          " lower / upper half: %s" % (t, "; ".join(out)))
+
+
 def main():
     case = sys.argv[1] if len(sys.argv) > 1 else "."
     m = read(case)
@@ -71,6 +138,7 @@ def main():
               % (goa[0], plateau, t_open, PAPER_OPEN))
         print("  peak Re %.0f (paper: about %.0f); peak forward flow %.3e m3/s"
               % (re_[fwd].max(), PAPER_RE, q.max()))
+        curvature_report(case, t_open)
     back = dp < 0
     if back.any():
         t_back = t[back][0]

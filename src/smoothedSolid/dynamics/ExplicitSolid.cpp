@@ -287,7 +287,8 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
         // An inverted domain is recorded (lowest index) inside the parallel
         // loop and reported after it: exceptions cannot leave an OpenMP loop
         int bad = std::numeric_limits<int>::max();
-#pragma omp parallel for schedule(static) reduction(min : bad)
+        int nonFinite = std::numeric_limits<int>::max();
+#pragma omp parallel for schedule(static) reduction(min : bad, nonFinite)
         for (int d = 0; d < nd; ++d) {
             if (!(F[d].determinant() > 0)) {
                 bad = std::min(bad, d);
@@ -313,6 +314,13 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
                     }
                     break;
             }
+            if (!P[d].allFinite()) {
+                nonFinite = std::min(nonFinite, d);
+                P[d].setZero();
+            }
+        }
+        if (bad == std::numeric_limits<int>::max() && nonFinite != std::numeric_limits<int>::max()) {
+            bad = nonFinite;
         }
         if (bad != std::numeric_limits<int>::max()) {
             std::string where = std::string(kindName(use.kind)) + " smoothing domain " + std::to_string(bad);
@@ -323,9 +331,12 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
             } else if (use.kind == DomainKind::Node) {
                 where += " (around node " + std::to_string(bad) + ")";
             }
-            throw Error("inverted material in " + where + " at t = " + std::to_string(t_) +
+            const bool inverted = !(F[bad].determinant() > 0);
+            throw Error(std::string(inverted ? "inverted material" : "stress beyond range (blown-up stretch)") +
+                        " in " + where + " at t = " + std::to_string(t_) +
                         ", step " + std::to_string(nSteps_) +
                         " (det F = " + std::to_string(F[bad].determinant()) +
+                        ", |F| = " + std::to_string(F[bad].norm()) +
                         "): the time step or the load is too large");
         }
     }

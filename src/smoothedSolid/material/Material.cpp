@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace smoothedSolid {
 
@@ -245,7 +246,15 @@ Mat3 HolzapfelGasserOgden::stressDeviatoric(const Mat3& F, const Vec3& a0) const
     Mat3 P = MooneyRivlin::stressDeviatoric(F);
     const Vec3 a = F * a0;
     const double E4 = a.squaredNorm() - 1.0;
-    if (E4 > 0) P.noalias() += (2.0 * k1_ * E4 * std::exp(k2_ * E4 * E4)) * a * a0.transpose();
+    if (E4 > 0) {
+        // beyond exp's range (a blown-up motion): not finite, which the
+        // solid reports (ExplicitSolid::internalForce), rather than an
+        // overflow that a trapping host (OpenFOAM's FOAM_SIGFPE) turns
+        // into a crash
+        const double x = k2_ * E4 * E4;
+        if (!(x < 700.0)) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
+        P.noalias() += (2.0 * k1_ * E4 * std::exp(x)) * a * a0.transpose();
+    }
     return P;
 }
 

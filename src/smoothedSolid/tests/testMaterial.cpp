@@ -502,3 +502,28 @@ TEST(FibreMaterial, BadConstantsAndMissingDirectionThrow)
     EXPECT_THROW(m.firstPK(Mat3::Identity()), Error);
     EXPECT_THROW(m.energy(Mat3::Identity()), Error);
 }
+
+// A fibre stretched beyond the exponential's range (a blown-up motion): the
+// stress is not finite, which ExplicitSolid reports as an error naming the
+// domain, instead of an overflow (a crash where the host traps it). Just
+// inside the range it is finite and the closed form's.
+TEST(FibreMaterial, BlownUpStretchIsNotFinite)
+{
+    const FibreConstants c;
+    const HolzapfelGasserOgden m = fibreMaterial(c);
+    const Vec3 a0(1, 0, 0);
+    // k2 (l^2 - 1)^2 = 5 * 15^2 = 1125 > 700 at l = 4
+    const Mat3 Fblown = Vec3(4.0, 0.5, 0.5).asDiagonal();
+    const Mat3 Pblown = m.stressDeviatoric(Fblown, a0);
+    std::printf("holzapfelGasserOgden at a fibre stretch of 4 (exponent 1125): finite %d "
+                "(expected 0)\n", int(Pblown.allFinite()));
+    EXPECT_FALSE(Pblown.allFinite());
+    // k2 (l^2 - 1)^2 = 5 * 2^2 = 20 at l = sqrt(3): finite, the fibre term as by hand
+    const double l = std::sqrt(3.0);
+    const Mat3 F = Vec3(l, 1.0, 1.0).asDiagonal();
+    const Mat3 P = m.stressDeviatoric(F, a0) - MooneyRivlin(c.c10, c.c01, c.kappa, 1000.0).stressDeviatoric(F);
+    std::printf("holzapfelGasserOgden fibre P_xx at l = sqrt(3): %.6e, by hand %.6e\n", P(0, 0),
+                fibrePK1(c, l));
+    EXPECT_TRUE(P.allFinite());
+    EXPECT_NEAR(P(0, 0), fibrePK1(c, l), 1e-9 * fibrePK1(c, l));
+}
