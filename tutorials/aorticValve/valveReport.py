@@ -24,7 +24,8 @@ Contact: the smallest leaflet-leaflet and leaflet-wall gaps of all rows
 (negative: interpenetration) and the largest contact force.
 Curvature (from the leaflets' VTU files, VTK/solid/solid_<time>.vtu, at the
 time to open): each leaflet's mid-line, the nodes within 10 degrees of its
-centre plane (undeformed positions), averaged in 10 bands of undeformed
+centre plane (undeformed positions; the frame of valveParameters.geo: axis
+z, leaflet k centred at 120 (k - 1) degrees from x), averaged in 10 bands of undeformed
 radius from the attachment to the free edge, in its (radial, axial) plane;
 the mean turning of the line over its lower and upper halves. The paper's
 opening valve bends one way near the attachment and the other near the
@@ -69,7 +70,7 @@ def midline_turning(path, leaflet, bands=10, halfAngle=10.0):
     leaflet's (radial, axial) plane) of leaflet k's mid-line over its lower
     (attachment) and upper (free edge) halves, from the VTU at path."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    from valvePictures import read_vtk
+    from valvePictures import read_vtk  # its VTU reader (needs matplotlib)
     vtu = read_vtk(path)
     x = vtu["points"]
     x0 = x - vtu["point_data"]["displacement"].reshape(-1, 3)
@@ -108,7 +109,11 @@ def curvature_report(case, t_open):
     t = min(times, key=lambda s: abs(s - t_open))
     out = []
     for k in range(3):
-        r = midline_turning(times[t], k)
+        try:
+            r = midline_turning(times[t], k)
+        except ImportError as err:
+            print("  curvature: not measured (%s)" % err)
+            return
         if r is None:
             out.append("leaflet %d: too few nodes" % (k + 1))
             continue

@@ -157,15 +157,8 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
         {
             balancedFlux_.reset(new balancedForceFlux(mesh_));
         }
+        // zero through the boundary: the walls take it
         tphiF = rAUf*balancedFlux_->flux(f);
-        // no force flux through the boundary
-        for (auto& pf : tphiF.ref().boundaryFieldRef())
-        {
-            if (!pf.coupled())
-            {
-                pf = 0;
-            }
-        }
     }
     surfaceScalarField phiHbyA
     (

@@ -61,7 +61,15 @@ Foam::balancedForceFlux::flux(const volVectorField& f) const
     // phi_f = w_f ((x_f - x_o).g_o + (x_n - x_f).g_n), g_c = V_c D_c^-T f_c
     volVectorField gf
     (
-        IOobject(f.name() + "Balanced", mesh_.time().timeName(), mesh_),
+        IOobject
+        (
+            f.name() + "Balanced",
+            mesh_.time().timeName(),
+            mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE,
+            false
+        ),
         mesh_,
         dimensionedVector(f.dimensions(), Zero),
         zeroGradientFvPatchVectorField::typeName
@@ -75,7 +83,15 @@ Foam::balancedForceFlux::flux(const volVectorField& f) const
     (
         new surfaceScalarField
         (
-            IOobject("flux(" + f.name() + ')', mesh_.time().timeName(), mesh_),
+            IOobject
+            (
+                "flux(" + f.name() + ')',
+                mesh_.time().timeName(),
+                mesh_,
+                IOobject::NO_READ,
+                IOobject::NO_WRITE,
+                false
+            ),
             mesh_,
             dimensionedScalar(f.dimensions()*dimArea, Zero)
         )
@@ -108,7 +124,10 @@ Foam::balancedForceFlux::flux(const volVectorField& f) const
             {
                 const vector xo(C[fc[i]]);
                 pphi[i] = pw[i]
-                   *(((pCf[i] - xo) & fi[i]) + ((xo + delta[i] - pCf[i]) & fn[i]));
+                   *(
+                        ((pCf[i] - xo) & fi[i])
+                      + ((xo + delta[i] - pCf[i]) & fn[i])
+                    );
             }
         }
         else
@@ -156,7 +175,10 @@ Foam::balancedForceFlux::reconstruct(const surfaceScalarField& phi) const
             (
                 "reconstruct(" + phi.name() + ')',
                 mesh_.time().timeName(),
-                mesh_
+                mesh_,
+                IOobject::NO_READ,
+                IOobject::NO_WRITE,
+                false
             ),
             mesh_,
             dimensionedVector(phi.dimensions()/dimArea, Zero),

@@ -232,11 +232,24 @@ namespace {
 double HolzapfelGasserOgden::energyDeviatoric(const Mat3&) const { needsDirection(); }
 Mat3 HolzapfelGasserOgden::stressDeviatoric(const Mat3&) const { needsDirection(); }
 
+// The fibre term's exponent k2 (I4 - 1)^2 beyond which the motion is taken
+// as blown up: the energy and the stress are then not finite (quiet NaN),
+// which the solid reports (ExplicitSolid::internalForce), rather than an
+// overflow that a trapping host (OpenFOAM's FOAM_SIGFPE) turns into a
+// crash. exp(200) = 7e86 leaves the stress, its prefactors and the step
+// bound's psi2 I4^2 far inside the double range; k2 (I4 - 1)^2 = 200 is a
+// fibre stretch of 2.0 at k2 = 20 and of 4.0 at k2 = 0.84.
+static constexpr double kMaxFibreExponent = 200.0;
+
 double HolzapfelGasserOgden::energyDeviatoric(const Mat3& F, const Vec3& a0) const
 {
     double W = MooneyRivlin::energyDeviatoric(F);
     const double E4 = (F * a0).squaredNorm() - 1.0;  // I4 - 1
-    if (E4 > 0) W += 0.5 * k1_ / k2_ * std::expm1(k2_ * E4 * E4);
+    if (E4 > 0) {
+        const double x = k2_ * E4 * E4;
+        if (!(x < kMaxFibreExponent)) return std::numeric_limits<double>::quiet_NaN();
+        W += 0.5 * k1_ / k2_ * std::expm1(x);
+    }
     return W;
 }
 
@@ -247,12 +260,10 @@ Mat3 HolzapfelGasserOgden::stressDeviatoric(const Mat3& F, const Vec3& a0) const
     const Vec3 a = F * a0;
     const double E4 = a.squaredNorm() - 1.0;
     if (E4 > 0) {
-        // beyond exp's range (a blown-up motion): not finite, which the
-        // solid reports (ExplicitSolid::internalForce), rather than an
-        // overflow that a trapping host (OpenFOAM's FOAM_SIGFPE) turns
-        // into a crash
         const double x = k2_ * E4 * E4;
-        if (!(x < 700.0)) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
+        if (!(x < kMaxFibreExponent)) {
+            return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
+        }
         P.noalias() += (2.0 * k1_ * E4 * std::exp(x)) * a * a0.transpose();
     }
     return P;
@@ -287,7 +298,8 @@ Material::TangentBound HolzapfelGasserOgden::fibreBound(const Mat3& F, const Vec
 {
     TangentBound t = MooneyRivlin::tangentBoundDeviatoric(F, lambda2);
     const double I4s = std::max(I4, 1.0), E4 = I4s - 1.0;
-    const double e = std::exp(k2_ * E4 * E4);
+    // beyond kMaxFibreExponent the stress has stopped the solid already
+    const double e = std::exp(std::min(k2_ * E4 * E4, kMaxFibreExponent));
     const double psi1 = k1_ * E4 * e, psi2 = k1_ * (1.0 + 2.0 * k2_ * E4 * E4) * e;
     if (directional) t.fibre = (4.0 * psi2 * I4s + 2.0 * psi1) / F.determinant();
     else t.shear += (4.0 * psi2 * I4s * I4s + 2.0 * psi1 * I4s) / F.determinant();

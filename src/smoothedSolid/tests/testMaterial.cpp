@@ -2,6 +2,7 @@
 // homogeneous large-strain stresses, and objectivity
 #include "material/Material.hpp"
 
+#include <cfenv>
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
@@ -503,27 +504,39 @@ TEST(FibreMaterial, BadConstantsAndMissingDirectionThrow)
     EXPECT_THROW(m.energy(Mat3::Identity()), Error);
 }
 
-// A fibre stretched beyond the exponential's range (a blown-up motion): the
-// stress is not finite, which ExplicitSolid reports as an error naming the
-// domain, instead of an overflow (a crash where the host traps it). Just
-// inside the range it is finite and the closed form's.
+// A fibre stretched beyond the blow-up limit k2 (I4 - 1)^2 = 200
+// (Material.cpp): the stress and energy are not finite (quiet NaN), which
+// ExplicitSolid reports as an error naming the domain; just inside it they
+// are finite and the closed form's. Floating-point traps on (as OpenFOAM's
+// FOAM_SIGFPE sets them), so an overflow on the way fails the test.
 TEST(FibreMaterial, BlownUpStretchIsNotFinite)
 {
     const FibreConstants c;
     const HolzapfelGasserOgden m = fibreMaterial(c);
+    const MooneyRivlin matrix(c.c10, c.c01, c.kappa, 1000.0);
     const Vec3 a0(1, 0, 0);
-    // k2 (l^2 - 1)^2 = 5 * 15^2 = 1125 > 700 at l = 4
-    const Mat3 Fblown = Vec3(4.0, 0.5, 0.5).asDiagonal();
-    const Mat3 Pblown = m.stressDeviatoric(Fblown, a0);
-    std::printf("holzapfelGasserOgden at a fibre stretch of 4 (exponent 1125): finite %d "
-                "(expected 0)\n", int(Pblown.allFinite()));
-    EXPECT_FALSE(Pblown.allFinite());
-    // k2 (l^2 - 1)^2 = 5 * 2^2 = 20 at l = sqrt(3): finite, the fibre term as by hand
-    const double l = std::sqrt(3.0);
+    auto stretchAt = [&](double x) { return std::sqrt(1.0 + std::sqrt(x / c.k2)); };
+    feclearexcept(FE_ALL_EXCEPT);
+    const int traps = feenableexcept(FE_INVALID | FE_OVERFLOW | FE_DIVBYZERO);
+    // just beyond: k2 (l^2 - 1)^2 = 201, and far beyond: 1e4
+    bool blownNotFinite = true;
+    for (const double x : {201.0, 1.0e4}) {
+        const Mat3 F = Vec3(stretchAt(x), 0.8, 0.8).asDiagonal();
+        const Mat3 P = m.stressDeviatoric(F, a0);
+        const double W = m.energyDeviatoric(F, a0);
+        blownNotFinite = blownNotFinite && !P.allFinite() && !std::isfinite(W);
+    }
+    // just inside: k2 (l^2 - 1)^2 = 199, finite and the closed form's
+    const double l = stretchAt(199.0);
     const Mat3 F = Vec3(l, 1.0, 1.0).asDiagonal();
-    const Mat3 P = m.stressDeviatoric(F, a0) - MooneyRivlin(c.c10, c.c01, c.kappa, 1000.0).stressDeviatoric(F);
-    std::printf("holzapfelGasserOgden fibre P_xx at l = sqrt(3): %.6e, by hand %.6e\n", P(0, 0),
-                fibrePK1(c, l));
+    const Mat3 P = m.stressDeviatoric(F, a0) - matrix.stressDeviatoric(F);
+    fedisableexcept(FE_ALL_EXCEPT);
+    feenableexcept(traps);
+    std::printf("holzapfelGasserOgden beyond the blow-up limit (exponent 201, 1e4): stress and "
+                "energy not finite %d (expected 1); at exponent 199 fibre P_xx %.6e, by hand "
+                "%.6e\n",
+                int(blownNotFinite), P(0, 0), fibrePK1(c, l));
+    EXPECT_TRUE(blownNotFinite);
     EXPECT_TRUE(P.allFinite());
     EXPECT_NEAR(P(0, 0), fibrePK1(c, l), 1e-9 * fibrePK1(c, l));
 }
