@@ -24,7 +24,15 @@ If (!Exists(nEdge)) nEdge = 40; EndIf   // points along attachment and free edge
 //               by belly * |AF| perpendicular to the chord in the vertical
 //               plane through A and F, downwards (towards the ventricle). In
 //               a top view it runs straight from A to F, so the leaflet never
-//               reaches beyond its free edge towards its neighbours.
+//               reaches beyond its free edge towards its neighbours;
+//   band        with coapt > 0 (valveParameters.geo), F(u) is the
+//               coaptation line: the Bezier's control point lies straight
+//               below F (belly * |AF| from the chord, at most 0.9 of the
+//               rise from A to F), so that the section arrives at F
+//               vertically, and the leaflet goes on vertically from F by
+//               coapt (1 - s(u)) to the free edge T(u) (s = 0 at the
+//               centre, 1 at the commissures). Neighbouring bands are
+//               parallel, their faces gap apart.
 // The mid-surface is the OpenCASCADE filling of the curve loop attachment +
 // free edge through the Bezier points of an inner (u, v) grid; at u = 0 the
 // Bezier is the mid-line whose length is L_h (valveParameters.geo).
@@ -40,6 +48,7 @@ Macro FreeEdgePoint     // in u, out fx, fy, fz
     fs = (Sqrt(fy^2 + eps_r^2) - eps_r)/sC;
     fx = d_V + k_F*Sqrt(fy^2 + eps_r^2);
     fz = z_M + (z_C - z_M)*fs;
+    fh = coapt*(1 - fs);  // the band's height above F
 Return
 Macro SurfacePoint      // in u, v, out sx, sy, sz
     Call AttachmentPoint;
@@ -52,9 +61,25 @@ Macro SurfacePoint      // in u, v, out sx, sy, sz
     qx = 0.5*(ax + fx) + belly*cl*px/pl;
     qy = 0.5*(ay + fy) + belly*cl*py/pl;
     qz = 0.5*(az + fz) + belly*cl*pz/pl;
-    sx = (1-v)^2*ax + 2*v*(1-v)*qx + v^2*fx;
-    sy = (1-v)^2*ay + 2*v*(1-v)*qy + v^2*fy;
-    sz = (1-v)^2*az + 2*v*(1-v)*qz + v^2*fz;
+    tb = v;
+    If (coapt > 0)
+        // control point below F: its distance from the chord is
+        // depth * (horizontal chord) / |AF|
+        ch = Sqrt(cx^2 + cy^2);
+        depth = Min(belly*cl^2/ch, 0.9*cz);
+        qx = fx; qy = fy; qz = fz - depth;
+        // v in [0, vb]: the Bezier; [vb, 1]: the band (by length)
+        vb = cl/(cl + fh);
+        tb = Min(v/vb, 1);
+    EndIf
+    sx = (1-tb)^2*ax + 2*tb*(1-tb)*qx + tb^2*fx;
+    sy = (1-tb)^2*ay + 2*tb*(1-tb)*qy + tb^2*fy;
+    sz = (1-tb)^2*az + 2*tb*(1-tb)*qz + tb^2*fz;
+    If (coapt > 0)
+        If (v > vb)
+            sz = fz + fh*(v - vb)/(1 - vb);
+        EndIf
+    EndIf
 Return
 
 pCm = newp; Point(pCm) = {x_C, -y_C, z_C};
@@ -71,12 +96,12 @@ EndFor
 pts[] += {pCp};
 attach = newc; Spline(attach) = pts[];
 
-// free edge, C+ -> M -> C-
+// free edge (the top of the band), C+ -> M -> C-
 pts[] = {pCp};
 For j In {1:nEdge-1}
     u = 1 - 2*j/nEdge;
     Call FreeEdgePoint;
-    p = newp; Point(p) = {fx, fy, fz};
+    p = newp; Point(p) = {fx, fy, fz + fh};
     pts[] += {p};
 EndFor
 pts[] += {pCm};
@@ -84,7 +109,10 @@ free = newc; Spline(free) = pts[];
 
 // inner points the filling passes through
 If (!Exists(nFillU)) nFillU = 12; EndIf
-If (!Exists(nFillV)) nFillV = 6; EndIf
+If (!Exists(nFillV))
+    nFillV = 6;
+    If (coapt > 0) nFillV = 10; EndIf   // the band's bend
+EndIf
 mid[] = {};
 For i In {1:nFillU-1}
     u = -1 + 2*i/nFillU;

@@ -14,9 +14,15 @@ the paper's two layers, with the nodes on the ventricular face, the
 mid-surface and the aortic face.
 
 Beside out.msh, out.circumferential holds each tetrahedron's circumferential
-direction (e_theta at its triangle's centre projected onto the mid-surface's
-tangent plane, unit, counter-clockwise about +z; the fibre direction of
-leaflet tissue), one line per tetrahedron in the order of out.msh.
+direction, the fibre direction of leaflet tissue: the leaflet's
+commissure-to-commissure direction, tangent to the lines v = const of the
+construction in aorticLeaflets.geo (the attachment at v = 0, the free edge
+at v = 1; dS/du, u from the commissure at y < 0 to the one at y > 0 for
+leaflet 1) at its triangle's centre, projected onto the mid-surface's
+tangent plane, unit; one line per tetrahedron in the order of out.msh. The
+centre's (u, v) is the nearest point of a fine grid of the construction;
+the largest distance from a triangle's centre to it is printed (the
+OpenCASCADE filling against the construction it passes through).
 
 Written as gmsh msh 2.2 in metres (the geometry is in mm) with the physical
 groups (read by smoothedSolid's TetMesh::fromGmsh):
@@ -111,6 +117,144 @@ def boundaryEdges(tris):
     return [e for e, n in count.items() if n == 1]
 
 
+class LeafletConstruction:
+    """The mid-surface S(u, v) of leaflet 1 as aorticLeaflets.geo builds it
+    (macros AttachmentPoint, FreeEdgePoint, SurfacePoint), in mm."""
+
+    def __init__(self):
+        g = lambda name: gmsh.onelab.getNumber("valve/" + name)[0]
+        for name in ("r_b", "r_c", "h", "belly", "coapt", "z_C", "z_M", "Phi",
+                     "y_C", "eps_r", "d_V", "k_F"):
+            setattr(self, name, g(name))
+        self.sC = np.sqrt(self.y_C**2 + self.eps_r**2) - self.eps_r
+
+    def point(self, u, v):
+        u = np.asarray(u, dtype=float)
+        v = np.asarray(v, dtype=float)
+        phi = u * self.Phi
+        az = self.h * (1 - np.cos(1.5 * phi))
+        ar = self.r_b + (self.r_c - self.r_b) * az / self.h
+        A = np.stack([ar * np.cos(phi), ar * np.sin(phi), az], axis=-1)
+        fy = u * self.y_C
+        rho = np.sqrt(fy**2 + self.eps_r**2)
+        fs = (rho - self.eps_r) / self.sC
+        F = np.stack([self.d_V + self.k_F * rho, fy,
+                      self.z_M + (self.z_C - self.z_M) * fs], axis=-1)
+        fh = self.coapt * (1 - fs)
+        c = F - A
+        cl = np.linalg.norm(c, axis=-1)
+        cl = np.where(cl > 0, cl, 1e-300)
+        t = v
+        if self.coapt > 0:
+            ch = np.maximum(np.hypot(c[..., 0], c[..., 1]), 1e-300)
+            depth = np.minimum(self.belly * cl**2 / ch, 0.9 * c[..., 2])
+            Q = F.copy()
+            Q[..., 2] -= depth
+            vb = cl / (cl + fh)
+            t = np.minimum(v / vb, 1.0)
+        else:
+            p = np.stack([c[..., 2] * c[..., 0], c[..., 2] * c[..., 1],
+                          c[..., 2]**2 - cl**2], axis=-1) / (cl**2)[..., None]
+            pl = np.linalg.norm(p, axis=-1)
+            pl = np.where(pl > 0, pl, 1e-300)
+            Q = 0.5 * (A + F) + (self.belly * cl / pl)[..., None] * p
+        t = t[..., None]
+        S = (1 - t)**2 * A + 2 * t * (1 - t) * Q + t**2 * F
+        if self.coapt > 0:
+            band = (v > vb)
+            zBand = F[..., 2] + fh * (v - vb) / np.where(vb < 1, 1 - vb, 1)
+            S[..., 2] = np.where(band, zBand, S[..., 2])
+        return S
+
+
+def rotation(k):
+    """Rotation from leaflet 1's frame to leaflet k's (120 (k - 1) degrees
+    about z)"""
+    a = 2 * np.pi / 3 * (k - 1)
+    return np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+
+
+def nearestParameters(construction, points, nu=801, nv=401, iterations=4):
+    """(u, v) of the construction's point nearest each of 'points' (leaflet
+    1's frame): nearest point of a grid, then Gauss-Newton steps."""
+    from scipy.spatial import cKDTree
+    U, V = np.meshgrid(np.linspace(-1, 1, nu), np.linspace(0, 1, nv), indexing="ij")
+    S = construction.point(U, V).reshape(-1, 3)
+    _, idx = cKDTree(S).query(points)
+    u, v = U.ravel()[idx], V.ravel()[idx]
+    h = 1e-6
+    for _ in range(iterations):
+        x = construction.point(u, v)
+        Su = (construction.point(np.clip(u + h, -1, 1), v)
+              - construction.point(np.clip(u - h, -1, 1), v)) / (2 * h)
+        Sv = (construction.point(u, np.clip(v + h, 0, 1))
+              - construction.point(u, np.clip(v - h, 0, 1))) / (2 * h)
+        r = points - x
+        a11 = np.einsum("ij,ij->i", Su, Su)
+        a12 = np.einsum("ij,ij->i", Su, Sv)
+        a22 = np.einsum("ij,ij->i", Sv, Sv)
+        b1 = np.einsum("ij,ij->i", Su, r)
+        b2 = np.einsum("ij,ij->i", Sv, r)
+        det = a11 * a22 - a12**2
+        good = det > 1e-12 * np.maximum(a11 * a22, 1e-300)
+        du = np.where(good, (a22 * b1 - a12 * b2) / np.where(good, det, 1), 0)
+        dv = np.where(good, (a11 * b2 - a12 * b1) / np.where(good, det, 1), 0)
+        u = np.clip(u + du, -1, 1)
+        v = np.clip(v + dv, 0, 1)
+    return u, v
+
+
+def snapToConstruction(construction, X, normals, k, onAttach, onFree):
+    """Mid-surface nodes of leaflet k moved onto the construction (the
+    attachment nodes to v = 0, the free edge's to v = 1), with the
+    construction's unit normal S_u x S_v where it is defined (the CAD's at
+    the commissure ends, where S_v vanishes). Returns the new coordinates,
+    normals and the largest move (mm)."""
+    R = rotation(k)
+    u, v = nearestParameters(construction, X @ R)
+    attach = np.zeros(len(X), bool)
+    attach[list(onAttach)] = True
+    free = np.zeros(len(X), bool)
+    free[list(onFree)] = True
+    v = np.where(attach, 0.0, np.where(free, 1.0, v))
+    P = construction.point(u, v) @ R.T
+    h = 1e-6
+    Su = construction.point(np.clip(u + h, -1, 1), v) - construction.point(np.clip(u - h, -1, 1), v)
+    vm, vp = np.clip(v - h, 0, 1), np.clip(v + h, 0, 1)
+    Sv = construction.point(u, vp) - construction.point(u, vm)
+    n = np.cross(Su, Sv) @ R.T
+    length = np.linalg.norm(n, axis=1)
+    good = length > 1e-3 * np.max(length)
+    n[good] /= length[good][:, None]
+    n[~good] = normals[~good]
+    # the CAD normal's orientation
+    flip = np.einsum("ij,ij->i", n, normals) < 0
+    n[flip] = -n[flip]
+    return P, n, float(np.max(np.linalg.norm(P - X, axis=1)))
+
+
+def circumferentialDirections(construction, centre, normal, k, nu=801, nv=401):
+    """Unit dS/du at the grid point (u, v) nearest each centre of leaflet k
+    (rotated into leaflet 1's frame), projected onto the tangent plane of
+    'normal'; and the largest centre-to-grid distance (mm)."""
+    from scipy.spatial import cKDTree
+    R = rotation(k).T   # leaflet k's frame -> leaflet 1's
+    u = np.linspace(-1, 1, nu)
+    v = np.linspace(0, 1, nv)
+    U, V = np.meshgrid(u, v, indexing="ij")
+    S = construction.point(U, V).reshape(-1, 3)
+    local = centre @ R.T
+    dist, idx = cKDTree(S).query(local)
+    du = 0.5 / (nu - 1)
+    uc = np.clip(U.ravel()[idx], -1 + du, 1 - du)
+    vc = V.ravel()[idx]
+    tangent = construction.point(uc + du, vc) - construction.point(uc - du, vc)
+    tangent = tangent @ R          # back to leaflet k's frame
+    tangent -= np.einsum("ij,ij->i", tangent, normal)[:, None] * normal
+    tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+    return tangent, float(dist.max())
+
+
 def tetVolumes(X, tets):
     a = X[tets[:, 1]] - X[tets[:, 0]]
     b = X[tets[:, 2]] - X[tets[:, 0]]
@@ -123,6 +267,9 @@ def main():
     openLeaflets(gmshArgs)
     L_t = gmsh.onelab.getNumber("valve/L_t")[0]
     gmsh.model.mesh.generate(2)
+    construction = LeafletConstruction()
+    farthest = 0.0
+    largestSnap = 0.0
 
     allX = []
     tets = []           # (tet node ids, leaflet)
@@ -136,6 +283,13 @@ def main():
         # the normal towards the aortic side: on the whole, +z
         if np.sum(n[:, 2]) < 0:
             n = -n
+        onAttach = curveNodes(groupEntity(1, "attachment%d" % k), local)
+        onFree = curveNodes(groupEntity(1, "freeEdge%d" % k), local)
+        if construction.coapt > 0:
+            # the filling rounds the band's bend (0.1 mm, a quarter of the
+            # gap): the nodes go onto the construction
+            X, n, moved = snapToConstruction(construction, X, n, k, onAttach, onFree)
+            largestSnap = max(largestSnap, moved)
         # orient the triangles' normals along n
         tn = np.cross(X[tris[:, 1]] - X[tris[:, 0]], X[tris[:, 2]] - X[tris[:, 0]])
         flip = np.einsum("ij,ij->i", tn, n[tris].mean(axis=1)) < 0
@@ -147,14 +301,13 @@ def main():
         def node(level, j):
             return offset + level * nm + j
 
-        # circumferential direction of each triangle: e_theta at its centre,
-        # in the tangent plane of the mid-surface
+        # circumferential direction of each triangle: commissure to
+        # commissure (dS/du of the construction), in the tangent plane
         centre = X[tris].mean(axis=1)
         normal = n[tris].mean(axis=1)
         normal /= np.linalg.norm(normal, axis=1)[:, None]
-        etheta = np.stack([-centre[:, 1], centre[:, 0], np.zeros(len(tris))], axis=1)
-        etheta -= np.einsum("ij,ij->i", etheta, normal)[:, None] * normal
-        etheta /= np.linalg.norm(etheta, axis=1)[:, None]
+        etheta, off = circumferentialDirections(construction, centre, normal, k)
+        farthest = max(farthest, off)
 
         for t, e in zip(tris, etheta):
             a, b, c = sorted(t)
@@ -168,8 +321,6 @@ def main():
         faces["ventricular%d" % k] = [[node(0, v) for v in t[[0, 2, 1]]] for t in tris]
         faces["aortic%d" % k] = [[node(layers, v) for v in t] for t in tris]
 
-        onAttach = curveNodes(groupEntity(1, "attachment%d" % k), local)
-        onFree = curveNodes(groupEntity(1, "freeEdge%d" % k), local)
         for name, on in (("attachment", onAttach), ("freeEdge%d" % k, onFree)):
             side = faces.setdefault(name, [])
             for a, b in boundaryEdges(tris):
@@ -203,6 +354,12 @@ def main():
             f.write("%.9g %.9g %.9g\n" % tuple(d))
     print("leafletLayers.py: wrote %s: %d tetrahedra, %d nodes, %d layers"
           % (out, len(T), len(X), layers))
+    print("leafletLayers.py: mid-surface triangle centres lie within %.3g mm "
+          "of the construction (fibre directions from it)" % farthest)
+    if construction.coapt > 0:
+        print("leafletLayers.py: coaptation band (coapt = %g mm): the mid-surface "
+              "nodes moved onto the construction, by at most %.3g mm"
+              % (construction.coapt, largestSnap))
 
 
 def writeMsh22(fileName, X, T, part, faces):

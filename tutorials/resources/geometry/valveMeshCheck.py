@@ -19,6 +19,13 @@
         times the OpenCASCADE area of its CAD mid-surface
         (aorticLeaflets.geo), within 1 %; and the distance of the leaflets'
         attachment nodes from the root wall
+    valveMeshCheck.py coaptation leaflets.msh [-setnumber name value ...]
+        the coaptation bands (parameter coapt): the area of each leaflet's
+        ventricular face that faces a neighbour's ventricular face within
+        gap + 0.1 mm, against the band's area from its definition
+        (valveParameters.geo: a vertical strip of height coapt (1 - s) over
+        the coaptation line), within 30 %; with coapt = 0 the facing area
+        must stay below 2 mm2 per pair
 
 The meshes are in metres, the geometry in mm; -setnumber arguments must be
 the ones the meshes were made with. Exit status 1 on a failed check, with
@@ -277,9 +284,76 @@ def volumes(fluidFile, leafletFile, gmshArgs):
         fail("a volume differs from its reference by more than %g %%" % (100 * tolerance))
 
 
+def bandArea(g, n=4001):
+    """Area of one leaflet's band facing one neighbour (mm2): the vertical
+    strip of height coapt (1 - s(y)) over the coaptation line's horizontal
+    projection x = d_V + k_F sqrt(y^2 + eps_r^2), 0 <= y <= y_C, with
+    s = (sqrt(y^2 + eps_r^2) - eps_r)/(sqrt(y_C^2 + eps_r^2) - eps_r)
+    (valveParameters.geo, aorticLeaflets.geo); trapezoidal rule."""
+    y = np.linspace(0.0, g["y_C"], n)
+    rho = np.sqrt(y**2 + g["eps_r"]**2)
+    s = (rho - g["eps_r"]) / (np.sqrt(g["y_C"]**2 + g["eps_r"]**2) - g["eps_r"])
+    dl = np.sqrt(1.0 + (g["k_F"] * y / rho)**2)
+    f = g["coapt"] * (1.0 - s) * dl
+    return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(y)))
+
+
+def coaptation(leafletFile, gmshArgs):
+    startGmsh(gmshArgs)
+    gmsh.open(os.path.join(HERE, "aorticLeaflets.geo"))
+    g = {k: gmsh.onelab.getNumber("valve/" + k)[0]
+         for k in ("coapt", "gap", "y_C", "eps_r", "k_F")}
+    gmsh.finalize()
+    m = readMesh(leafletFile)
+    X = m.points * MM
+    faces = {}
+    for k in (1, 2, 3):
+        tris = []
+        tag = physicalTag(m, "ventricular%d" % k)
+        for block, data in zip(m.cells, m.cell_data["gmsh:physical"]):
+            if block.type == "triangle":
+                tris.append(block.data[data == tag])
+        faces[k] = np.vstack(tris)
+    # points sampled on each face (barycentric grid, 15 per triangle)
+    bary = np.array([(i, j, 4 - i - j) for i in range(5) for j in range(5 - i)], float) / 4
+    from scipy.spatial import cKDTree
+    reach = g["gap"] + 0.1
+    reference = bandArea(g)
+    print("coaptation bands of %s (coapt = %g mm, gap = %g mm): facing area "
+          "within gap + 0.1 mm" % (leafletFile, g["coapt"], g["gap"]))
+    ok = True
+    for a, b in ((1, 2), (2, 3), (3, 1)):
+        samples = np.einsum("pk,tkd->tpd", bary, X[faces[b]]).reshape(-1, 3)
+        tree = cKDTree(samples)
+        total = 0.0
+        for k, other in ((a, b), (b, a)):
+            if k == b:
+                tree = cKDTree(np.einsum("pk,tkd->tpd", bary, X[faces[a]]).reshape(-1, 3))
+            T = X[faces[k]]
+            centre = T.mean(axis=1)
+            area = 0.5 * np.linalg.norm(np.cross(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0]), axis=1)
+            d, _ = tree.query(centre)
+            total += float(area[d < reach].sum())
+        measured = 0.5 * total  # per leaflet of the pair
+        if g["coapt"] > 0:
+            rel = abs(measured - reference) / reference
+            good = rel <= 0.3
+            print("  leaflets %d-%d: %.3g mm2 per leaflet, band %.3g mm2, difference "
+                  "%.1f %% (tolerance 30 %%)  %s" % (a, b, measured, reference,
+                                                    100 * rel, "PASS" if good else "FAIL"))
+        else:
+            good = measured < 2.0
+            print("  leaflets %d-%d: %.3g mm2 per leaflet (no band: below 2 mm2)  %s"
+                  % (a, b, measured, "PASS" if good else "FAIL"))
+        ok = ok and good
+    if not ok:
+        fail("the leaflets' facing areas do not match their coaptation bands")
+    print("  coaptation bands: PASS")
+
+
 def main(argv):
     if len(argv) < 3:
-        fail("usage: valveMeshCheck.py quality|layers|volumes <files> [-setnumber name value ...]")
+        fail("usage: valveMeshCheck.py quality|layers|volumes|coaptation <files> [-setnumber name value ...]")
     what = argv[1]
     files = [a for a in argv[2:4] if a.endswith(".msh")]
     rest = argv[2 + len(files):]
@@ -289,9 +363,12 @@ def main(argv):
         layers(files[0], rest)
     elif what == "volumes" and len(files) == 2:
         volumes(files[0], files[1], rest)
+    elif what == "coaptation" and len(files) == 1:
+        coaptation(files[0], rest)
     else:
         fail("usage: valveMeshCheck.py quality leaflets.msh | layers leaflets.msh "
-             "[-setnumber ...] | volumes fluid.msh leaflets.msh [-setnumber ...]")
+             "[-setnumber ...] | volumes fluid.msh leaflets.msh [-setnumber ...] | "
+             "coaptation leaflets.msh [-setnumber ...]")
 
 
 if __name__ == "__main__":

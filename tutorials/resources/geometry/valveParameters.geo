@@ -25,6 +25,11 @@
 //          faces; their mid-surfaces are gap + L_t apart)
 //   belly  sag of the leaflet's mid-line towards the ventricle, as a
 //          fraction of its chord (0: a ruled, flat-bellied leaflet)
+//   coapt  height of the coaptation band at the leaflet's centre: the
+//          leaflet turns up along the line of symmetry with each neighbour
+//          and runs parallel to the neighbour's band, gap apart, for this
+//          height, tapering to 0 at the commissures (0: no band, closed
+//          leaflets meet edge to edge). L_h includes the band.
 //   L_in   length of the inlet (ventricular) extension, radius r_b
 //   L_out  length of the outlet (aortic) extension above h_s, radius r_c
 //   fluidSize    tetrahedron size of the fluid domain
@@ -41,6 +46,7 @@ If (!Exists(L_h))   L_h = 16.0;  EndIf
 If (!Exists(L_t))   L_t = 0.3;   EndIf
 If (!Exists(gap))   gap = 0.4;   EndIf
 If (!Exists(belly)) belly = 0.15; EndIf
+If (!Exists(coapt)) coapt = 0;   EndIf
 If (!Exists(L_in))  L_in = 2*r_b; EndIf
 If (!Exists(L_out)) L_out = 3*r_b; EndIf
 // mesh sizes: the 'coarse' preset (makeValveMeshes sets the others)
@@ -84,6 +90,11 @@ EndIf
 If (belly < 0 || belly > 0.4)
     General.AbortOnError = 4; // exit(1) at the error
     Error("valveParameters.geo: belly = %g must lie in [0, 0.4]", belly);
+    Abort;
+EndIf
+If (coapt < 0 || coapt > 0.5*h)
+    General.AbortOnError = 4; // exit(1) at the error
+    Error("valveParameters.geo: coapt = %g must lie in [0, h/2 = %g]", coapt, 0.5*h);
     Abort;
 EndIf
 If (L_t > 0.1*h)
@@ -130,13 +141,27 @@ EndIf
 //   mid-line    (phi = 0) the quadratic Bezier from the nadir N = (r_b, 0, 0)
 //               to M with its control point belly * chord below the chord;
 //               z_M is chosen so that its length is L_h.
+//   coaptation  with coapt > 0 the curve above is the coaptation line, not
+//               the free edge: each section's Bezier arrives at it
+//               vertically (control point straight below it, belly * chord
+//               from the chord, at most 0.9 of the section's rise below
+//               it) and the leaflet goes on vertically, parallel to its
+//               neighbour's band, by coapt (1 - s) with s = 0 at M and 1 at
+//               C, to the free edge. The mid-line's length L_h is the
+//               Bezier's plus coapt; the free edge's centre is z_M + coapt.
 dPhi = Asin(0.5*(gap + L_t)/r_c);
 Phi = Pi/3 - dPhi;
 z_C = h*(1 - Cos(1.5*Phi));
 r_C = r_b + (r_c - r_b)*z_C/h;
 x_C = r_C*Cos(Phi);
 y_C = r_C*Sin(Phi);
-If (!Exists(eps_r)) eps_r = 0.1*r_c; EndIf   // rounding of the free edge at the centre
+// rounding of the free edge (the coaptation line) at the centre; with a
+// coaptation band, less, so that the bands face each other gap apart up to
+// near the centre
+If (!Exists(eps_r))
+    eps_r = 0.1*r_c;
+    If (coapt > 0) eps_r = 0.05*r_c; EndIf
+EndIf
 d_V = 0.5*(gap + L_t)/Sin(Pi/3);
 k_F = (x_C - d_V)/Sqrt(y_C^2 + eps_r^2);
 d_M = d_V + k_F*eps_r;
@@ -147,6 +172,12 @@ dr = r_b - d_M;
 Macro MidLineLength
     qr = 0.5*(r_b + d_M) - belly*zm;
     qz = 0.5*zm - belly*dr;
+    If (coapt > 0)
+        // vertical arrival at M: control point below M, belly * chord from
+        // the chord (chord length^2 / dr below M), at most 0.9 zm
+        qr = d_M;
+        qz = zm - Min(belly*(dr^2 + zm^2)/dr, 0.9*zm);
+    EndIf
     len = 0; pr = r_b; pz = 0;
     For j In {1:64}
         t = j/64;
@@ -155,21 +186,27 @@ Macro MidLineLength
         len += Sqrt((cr - pr)^2 + (cz - pz)^2);
         pr = cr; pz = cz;
     EndFor
+    len += coapt;
 Return
-If (L_h <= dr)
+If (L_h <= dr + coapt)
     General.AbortOnError = 4; // exit(1) at the error
-    Error("valveParameters.geo: L_h = %g is too short: the leaflet cannot reach the valve centre from the base (r_b - d_M = %g)", L_h, dr);
+    Error("valveParameters.geo: L_h = %g is too short: the leaflet cannot reach the valve centre from the base (r_b - d_M = %g) with its coaptation band (coapt = %g)", L_h, dr, coapt);
     Abort;
 EndIf
-zm = z_C - 0.5*L_t;
+zm = z_C - 0.5*L_t - coapt;
+If (zm <= 0)
+    General.AbortOnError = 4; // exit(1) at the error
+    Error("valveParameters.geo: coapt = %g is too high: the band would rise above the commissures (z = %g)", coapt, z_C);
+    Abort;
+EndIf
 Call MidLineLength;
 If (L_h > len)
     General.AbortOnError = 4; // exit(1) at the error
-    Error("valveParameters.geo: L_h = %g is longer than the root allows: the leaflet centre would rise above its commissures (z = %g); with r_b = %g, h = %g, belly = %g, L_h must be below %g", L_h, z_C, r_b, h, belly, len);
+    Error("valveParameters.geo: L_h = %g is longer than the root allows: the leaflet centre would rise above its commissures (z = %g); with r_b = %g, h = %g, belly = %g, coapt = %g, L_h must be below %g", L_h, z_C, r_b, h, belly, coapt, len);
     Abort;
 EndIf
-// bisection for z_M in (0, z_C - L_t/2]
-zLo = 0; zHi = z_C - 0.5*L_t;
+// bisection for z_M in (0, z_C - L_t/2 - coapt]
+zLo = 0; zHi = z_C - 0.5*L_t - coapt;
 For it In {1:50}
     zm = 0.5*(zLo + zHi);
     Call MidLineLength;
@@ -180,8 +217,10 @@ For it In {1:50}
     EndIf
 EndFor
 z_M = 0.5*(zLo + zHi);
-q_r = 0.5*(r_b + d_M) - belly*z_M;
-q_z = 0.5*z_M - belly*dr;
+zm = z_M;
+Call MidLineLength;
+q_r = qr;
+q_z = qz;
 If (q_z < 0.5*L_t)
     General.AbortOnError = 4; // exit(1) at the error
     Error("valveParameters.geo: belly = %g sags the leaflet below the valve base; use a smaller belly or a larger L_h", belly);
@@ -215,8 +254,11 @@ SetNumber("valve/r_b", r_b); SetNumber("valve/r_c", r_c); SetNumber("valve/h", h
 SetNumber("valve/r_sm", r_sm); SetNumber("valve/h_sm", h_sm);
 SetNumber("valve/h_s", h_s); SetNumber("valve/L_h", L_h);
 SetNumber("valve/L_t", L_t); SetNumber("valve/gap", gap);
-SetNumber("valve/belly", belly); SetNumber("valve/L_in", L_in);
+SetNumber("valve/belly", belly); SetNumber("valve/coapt", coapt); SetNumber("valve/L_in", L_in);
 SetNumber("valve/L_out", L_out); SetNumber("valve/fluidSize", fluidSize);
 SetNumber("valve/leafletSize", leafletSize);
 SetNumber("valve/wallSize", wallSize);
 SetNumber("valve/z_C", z_C); SetNumber("valve/z_M", z_M);
+SetNumber("valve/Phi", Phi); SetNumber("valve/x_C", x_C);
+SetNumber("valve/y_C", y_C); SetNumber("valve/eps_r", eps_r);
+SetNumber("valve/d_V", d_V); SetNumber("valve/k_F", k_F);
