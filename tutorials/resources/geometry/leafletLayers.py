@@ -6,7 +6,9 @@ thickness, built from the triangulated mid-surfaces of aorticLeaflets.geo.
 
 Each mid-surface node x gets N+1 copies x + (i/N - 1/2) L_t n(x), i = 0..N,
 with n the unit normal of the CAD mid-surface at x (pointing to the aortic
-side); each triangle gives N prisms, each prism 3 tetrahedra, split along
+side; with a coaptation band, coapt > 0, the nodes are first moved onto the
+construction of aorticLeaflets.geo and n is its normal S_u x S_v, since the
+CAD filling rounds the band's bend by up to about 0.1 mm); each triangle gives N prisms, each prism 3 tetrahedra, split along
 the diagonals that run from the lower- to the higher-numbered node of each
 side, so that neighbouring prisms share their faces. Every node of every
 tetrahedron lies on one of the N+1 offset surfaces; N = 2 (the default) is
@@ -233,6 +235,27 @@ def snapToConstruction(construction, X, normals, k, onAttach, onFree):
     return P, n, float(np.max(np.linalg.norm(P - X, axis=1)))
 
 
+def constructionSignedDistance(construction, X, k):
+    """Distance of the points X (mm) of leaflet k from the construction's
+    mid-surface, positive on the side its normal S_u x S_v points to on
+    the whole (+z, the aortic side)."""
+    R = rotation(k)
+    local = X @ R
+    u, v = nearestParameters(construction, local)
+    P = construction.point(u, v)
+    # the normal just inside the commissure ends, where S_v vanishes
+    uc = np.clip(u, -0.999, 0.999)
+    h = 1e-6
+    Su = construction.point(np.clip(uc + h, -1, 1), v) - construction.point(np.clip(uc - h, -1, 1), v)
+    Sv = construction.point(uc, np.clip(v + h, 0, 1)) - construction.point(uc, np.clip(v - h, 0, 1))
+    n = np.cross(Su, Sv)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    if np.sum(n[:, 2]) < 0:
+        n = -n
+    d = local - P
+    return np.sign(np.einsum("ij,ij->i", d, n)) * np.linalg.norm(d, axis=1)
+
+
 def circumferentialDirections(construction, centre, normal, k, nu=801, nv=401):
     """Unit dS/du at the grid point (u, v) nearest each centre of leaflet k
     (rotated into leaflet 1's frame), projected onto the tangent plane of
@@ -286,8 +309,8 @@ def main():
         onAttach = curveNodes(groupEntity(1, "attachment%d" % k), local)
         onFree = curveNodes(groupEntity(1, "freeEdge%d" % k), local)
         if construction.coapt > 0:
-            # the filling rounds the band's bend (0.1 mm, a quarter of the
-            # gap): the nodes go onto the construction
+            # the filling rounds the band's bend (0.06 to 0.13 mm, up to a
+            # third of the gap): the nodes go onto the construction
             X, n, moved = snapToConstruction(construction, X, n, k, onAttach, onFree)
             largestSnap = max(largestSnap, moved)
         # orient the triangles' normals along n
