@@ -22,9 +22,10 @@ construction in aorticLeaflets.geo (the attachment at v = 0, the free edge
 at v = 1; dS/du, u from the commissure at y < 0 to the one at y > 0 for
 leaflet 1) at its triangle's centre, projected onto the mid-surface's
 tangent plane, unit; one line per tetrahedron in the order of out.msh. The
-centre's (u, v) is the nearest point of a fine grid of the construction;
-the largest distance from a triangle's centre to it is printed (the
-OpenCASCADE filling against the construction it passes through).
+centre's (u, v) is that of the construction's nearest point; the largest
+distance from a triangle's centre to it is printed (the OpenCASCADE
+filling against the construction it passes through; with a band, whose
+nodes lie on the construction, the flat triangles across its bend).
 
 Written as gmsh msh 2.2 in metres (the geometry is in mm) with the physical
 groups (read by smoothedSolid's TetMesh::fromGmsh):
@@ -168,6 +169,50 @@ class LeafletConstruction:
             S[..., 2] = np.where(band, zBand, S[..., 2])
         return S
 
+    def tangents(self, u, v, h=1e-6):
+        """S_u and S_v by central differences (one-sided at the bounds;
+        S_u taken just inside the commissure ends, where S_v vanishes)."""
+        u = np.clip(u, -1 + h, 1 - h)
+        Su = (self.point(u + h, v) - self.point(u - h, v)) / (2 * h)
+        Sv = (self.point(u, np.clip(v + h, 0, 1))
+              - self.point(u, np.clip(v - h, 0, 1))) / (2 * h)
+        return Su, Sv
+
+    def nearestParameters(self, points, iterations=4, nu=801, nv=401):
+        """(u, v) of the point nearest each of 'points' (leaflet 1's
+        frame): nearest point of a nu x nv grid (its search tree built
+        once), then Gauss-Newton steps."""
+        if not hasattr(self, "_grid"):
+            from scipy.spatial import cKDTree
+            U, V = np.meshgrid(np.linspace(-1, 1, nu), np.linspace(0, 1, nv),
+                               indexing="ij")
+            self._grid = (U.ravel(), V.ravel(),
+                          cKDTree(self.point(U, V).reshape(-1, 3)))
+        U, V, tree = self._grid
+        _, idx = tree.query(points)
+        u, v = U[idx], V[idx]
+        for _ in range(iterations):
+            Su, Sv = self.tangents(u, v)
+            r = points - self.point(u, v)
+            a11 = np.einsum("ij,ij->i", Su, Su)
+            a12 = np.einsum("ij,ij->i", Su, Sv)
+            a22 = np.einsum("ij,ij->i", Sv, Sv)
+            b1 = np.einsum("ij,ij->i", Su, r)
+            b2 = np.einsum("ij,ij->i", Sv, r)
+            det = a11 * a22 - a12**2
+            good = det > 1e-12 * np.maximum(a11 * a22, 1e-300)
+            safe = np.where(good, det, 1)
+            u = np.clip(u + np.where(good, (a22 * b1 - a12 * b2) / safe, 0), -1, 1)
+            v = np.clip(v + np.where(good, (a11 * b2 - a12 * b1) / safe, 0), 0, 1)
+        return u, v
+
+    def normal(self, u, v):
+        """Unit S_u x S_v, oriented +z on the whole (the aortic side)"""
+        Su, Sv = self.tangents(u, v)
+        n = np.cross(Su, Sv)
+        n /= np.linalg.norm(n, axis=1)[:, None]
+        return -n if np.sum(n[:, 2]) < 0 else n
+
 
 def rotation(k):
     """Rotation from leaflet 1's frame to leaflet k's (120 (k - 1) degrees
@@ -176,103 +221,37 @@ def rotation(k):
     return np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
 
 
-def nearestParameters(construction, points, nu=801, nv=401, iterations=4):
-    """(u, v) of the construction's point nearest each of 'points' (leaflet
-    1's frame): nearest point of a grid, then Gauss-Newton steps."""
-    from scipy.spatial import cKDTree
-    U, V = np.meshgrid(np.linspace(-1, 1, nu), np.linspace(0, 1, nv), indexing="ij")
-    S = construction.point(U, V).reshape(-1, 3)
-    _, idx = cKDTree(S).query(points)
-    u, v = U.ravel()[idx], V.ravel()[idx]
-    h = 1e-6
-    for _ in range(iterations):
-        x = construction.point(u, v)
-        Su = (construction.point(np.clip(u + h, -1, 1), v)
-              - construction.point(np.clip(u - h, -1, 1), v)) / (2 * h)
-        Sv = (construction.point(u, np.clip(v + h, 0, 1))
-              - construction.point(u, np.clip(v - h, 0, 1))) / (2 * h)
-        r = points - x
-        a11 = np.einsum("ij,ij->i", Su, Su)
-        a12 = np.einsum("ij,ij->i", Su, Sv)
-        a22 = np.einsum("ij,ij->i", Sv, Sv)
-        b1 = np.einsum("ij,ij->i", Su, r)
-        b2 = np.einsum("ij,ij->i", Sv, r)
-        det = a11 * a22 - a12**2
-        good = det > 1e-12 * np.maximum(a11 * a22, 1e-300)
-        du = np.where(good, (a22 * b1 - a12 * b2) / np.where(good, det, 1), 0)
-        dv = np.where(good, (a11 * b2 - a12 * b1) / np.where(good, det, 1), 0)
-        u = np.clip(u + du, -1, 1)
-        v = np.clip(v + dv, 0, 1)
-    return u, v
-
-
-def snapToConstruction(construction, X, normals, k, onAttach, onFree):
+def snapToConstruction(construction, X, k, onAttach, onFree):
     """Mid-surface nodes of leaflet k moved onto the construction (the
-    attachment nodes to v = 0, the free edge's to v = 1), with the
-    construction's unit normal S_u x S_v where it is defined (the CAD's at
-    the commissure ends, where S_v vanishes). Returns the new coordinates,
-    normals and the largest move (mm)."""
+    attachment nodes to v = 0, the free edge's to v = 1), with its normal.
+    Returns the new coordinates, normals and the largest move (mm)."""
     R = rotation(k)
-    u, v = nearestParameters(construction, X @ R)
-    attach = np.zeros(len(X), bool)
-    attach[list(onAttach)] = True
-    free = np.zeros(len(X), bool)
-    free[list(onFree)] = True
-    v = np.where(attach, 0.0, np.where(free, 1.0, v))
+    u, v = construction.nearestParameters(X @ R)
+    v[list(onAttach)] = 0.0
+    v[list(onFree)] = 1.0
     P = construction.point(u, v) @ R.T
-    h = 1e-6
-    Su = construction.point(np.clip(u + h, -1, 1), v) - construction.point(np.clip(u - h, -1, 1), v)
-    vm, vp = np.clip(v - h, 0, 1), np.clip(v + h, 0, 1)
-    Sv = construction.point(u, vp) - construction.point(u, vm)
-    n = np.cross(Su, Sv) @ R.T
-    length = np.linalg.norm(n, axis=1)
-    good = length > 1e-3 * np.max(length)
-    n[good] /= length[good][:, None]
-    n[~good] = normals[~good]
-    # the CAD normal's orientation
-    flip = np.einsum("ij,ij->i", n, normals) < 0
-    n[flip] = -n[flip]
-    return P, n, float(np.max(np.linalg.norm(P - X, axis=1)))
+    return P, construction.normal(u, v) @ R.T, float(np.max(np.linalg.norm(P - X, axis=1)))
 
 
 def constructionSignedDistance(construction, X, k):
     """Distance of the points X (mm) of leaflet k from the construction's
-    mid-surface, positive on the side its normal S_u x S_v points to on
-    the whole (+z, the aortic side)."""
+    mid-surface, positive on its aortic side."""
+    local = X @ rotation(k)
+    u, v = construction.nearestParameters(local)
+    d = local - construction.point(u, v)
+    return np.sign(np.einsum("ij,ij->i", d, construction.normal(u, v))) \
+        * np.linalg.norm(d, axis=1)
+
+
+def circumferentialDirections(construction, centre, normal, k):
+    """Unit dS/du at the construction's point nearest each centre of
+    leaflet k, projected onto the tangent plane of 'normal'; and the
+    largest centre-to-construction distance (mm)."""
     R = rotation(k)
-    local = X @ R
-    u, v = nearestParameters(construction, local)
-    P = construction.point(u, v)
-    # the normal just inside the commissure ends, where S_v vanishes
-    uc = np.clip(u, -0.999, 0.999)
-    h = 1e-6
-    Su = construction.point(np.clip(uc + h, -1, 1), v) - construction.point(np.clip(uc - h, -1, 1), v)
-    Sv = construction.point(uc, np.clip(v + h, 0, 1)) - construction.point(uc, np.clip(v - h, 0, 1))
-    n = np.cross(Su, Sv)
-    n /= np.linalg.norm(n, axis=1)[:, None]
-    if np.sum(n[:, 2]) < 0:
-        n = -n
-    d = local - P
-    return np.sign(np.einsum("ij,ij->i", d, n)) * np.linalg.norm(d, axis=1)
-
-
-def circumferentialDirections(construction, centre, normal, k, nu=801, nv=401):
-    """Unit dS/du at the grid point (u, v) nearest each centre of leaflet k
-    (rotated into leaflet 1's frame), projected onto the tangent plane of
-    'normal'; and the largest centre-to-grid distance (mm)."""
-    from scipy.spatial import cKDTree
-    R = rotation(k).T   # leaflet k's frame -> leaflet 1's
-    u = np.linspace(-1, 1, nu)
-    v = np.linspace(0, 1, nv)
-    U, V = np.meshgrid(u, v, indexing="ij")
-    S = construction.point(U, V).reshape(-1, 3)
-    local = centre @ R.T
-    dist, idx = cKDTree(S).query(local)
-    du = 0.5 / (nu - 1)
-    uc = np.clip(U.ravel()[idx], -1 + du, 1 - du)
-    vc = V.ravel()[idx]
-    tangent = construction.point(uc + du, vc) - construction.point(uc - du, vc)
-    tangent = tangent @ R          # back to leaflet k's frame
+    local = centre @ R
+    u, v = construction.nearestParameters(local)
+    dist = np.linalg.norm(local - construction.point(u, v), axis=1)
+    tangent = construction.tangents(u, v)[0] @ R.T   # back to leaflet k's frame
     tangent -= np.einsum("ij,ij->i", tangent, normal)[:, None] * normal
     tangent /= np.linalg.norm(tangent, axis=1)[:, None]
     return tangent, float(dist.max())
@@ -311,7 +290,7 @@ def main():
         if construction.coapt > 0:
             # the filling rounds the band's bend (0.06 to 0.13 mm, up to a
             # third of the gap): the nodes go onto the construction
-            X, n, moved = snapToConstruction(construction, X, n, k, onAttach, onFree)
+            X, n, moved = snapToConstruction(construction, X, k, onAttach, onFree)
             largestSnap = max(largestSnap, moved)
         # orient the triangles' normals along n
         tn = np.cross(X[tris[:, 1]] - X[tris[:, 0]], X[tris[:, 2]] - X[tris[:, 0]])

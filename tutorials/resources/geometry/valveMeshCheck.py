@@ -318,33 +318,24 @@ def coaptation(leafletFile, gmshArgs):
     gmsh.finalize()
     m = readMesh(leafletFile)
     X = m.points * MM
-    faces = {}
-    for k in (1, 2, 3):
-        tris = []
-        tag = physicalTag(m, "ventricular%d" % k)
-        for block, data in zip(m.cells, m.cell_data["gmsh:physical"]):
-            if block.type == "triangle":
-                tris.append(block.data[data == tag])
-        faces[k] = np.vstack(tris)
+    tris, triTag = physicalCells(m, "triangle")
+    faces = {k: tris[triTag == physicalTag(m, "ventricular%d" % k)] for k in (1, 2, 3)}
     # points sampled on each face (barycentric grid, 15 per triangle)
-    bary = np.array([(i, j, 4 - i - j) for i in range(5) for j in range(5 - i)], float) / 4
     from scipy.spatial import cKDTree
+    bary = np.array([(i, j, 4 - i - j) for i in range(5) for j in range(5 - i)], float) / 4
+    trees = {k: cKDTree(np.einsum("pk,tkd->tpd", bary, X[faces[k]]).reshape(-1, 3))
+             for k in faces}
     reach = g["gap"] + 0.1
     reference = bandArea(g)
     print("coaptation bands of %s (coapt = %g mm, gap = %g mm): facing area "
           "within gap + 0.1 mm" % (leafletFile, g["coapt"], g["gap"]))
     ok = True
     for a, b in ((1, 2), (2, 3), (3, 1)):
-        samples = np.einsum("pk,tkd->tpd", bary, X[faces[b]]).reshape(-1, 3)
-        tree = cKDTree(samples)
         total = 0.0
         for k, other in ((a, b), (b, a)):
-            if k == b:
-                tree = cKDTree(np.einsum("pk,tkd->tpd", bary, X[faces[a]]).reshape(-1, 3))
             T = X[faces[k]]
-            centre = T.mean(axis=1)
             area = 0.5 * np.linalg.norm(np.cross(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0]), axis=1)
-            d, _ = tree.query(centre)
+            d, _ = trees[other].query(T.mean(axis=1))
             total += float(area[d < reach].sum())
         measured = 0.5 * total  # per leaflet of the pair
         if g["coapt"] > 0:
