@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "cbsProjectionFluid.H"
+#include "Function1.H"
 #include "fvCFD.H"
 #include "constrainHbyA.H"
 #include "constrainPressure.H"
@@ -347,6 +348,34 @@ Foam::scalar Foam::cbsProjectionFluid::diffusionLimit
 }
 
 
+Foam::scalar Foam::cbsProjectionFluid::maxDeltaT() const
+{
+    // controlDict maxDeltaT: a number, or a Function1 of time (a table,
+    // e.g. a smaller step once a closed valve's leaflets stiffen), read
+    // afresh so that runTimeModifiable edits take effect
+    const Time& runTime = mesh_.time();
+    const dictionary& controlDict = runTime.controlDict();
+    if (!controlDict.found("maxDeltaT"))
+    {
+        return GREAT;
+    }
+    const scalar dt =
+        Function1<scalar>::New("maxDeltaT", controlDict)->value
+        (
+            runTime.value()
+        );
+    if (!(dt > 0))
+    {
+        FatalIOErrorInFunction(controlDict)
+            << "maxDeltaT is " << dt << " at t = " << runTime.value()
+            << " in " << controlDict.name() << ": it must be positive"
+            << " (a number or a Function1 of time, e.g. table ((0 1e-5)"
+            << " (0.04 5e-6)))" << exit(FatalIOError);
+    }
+    return dt;
+}
+
+
 void Foam::cbsProjectionFluid::setInitialDeltaT()
 {
     const Time& runTime = mesh_.time();
@@ -363,11 +392,7 @@ void Foam::cbsProjectionFluid::setInitialDeltaT()
                 min
                 (
                     maxCo*runTime.deltaTValue()/CoNum,
-                    min
-                    (
-                        runTime.deltaTValue(),
-                        controlDict.lookupOrDefault<scalar>("maxDeltaT", GREAT)
-                    )
+                    min(runTime.deltaTValue(), maxDeltaT())
                 )
             );
         }
@@ -393,8 +418,7 @@ void Foam::cbsProjectionFluid::adjustDeltaT()
     if (controlDict.lookupOrDefault("adjustTimeStep", false))
     {
         const scalar maxCo = controlDict.get<scalar>("maxCo");
-        const scalar maxDeltaT =
-            controlDict.lookupOrDefault<scalar>("maxDeltaT", GREAT);
+        const scalar maxDeltaT = this->maxDeltaT();
 
         // Same damping of increases as OpenFOAM's setDeltaT.H
         const scalar maxDeltaTFact = maxCo/(CoNum + SMALL);

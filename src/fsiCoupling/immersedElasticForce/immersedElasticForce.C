@@ -9,6 +9,8 @@
 #include "tetIndices.H"
 #include "clockTime.H"
 #include "syncTools.H"
+#include "OFstream.H"
+#include "IFstream.H"
 #include "addToRunTimeSelectionTable.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
@@ -425,7 +427,11 @@ void Foam::fv::immersedElasticForce::setTetherMobility()
 }
 
 
-void Foam::fv::immersedElasticForce::spreadForce(const vectorField& v)
+void Foam::fv::immersedElasticForce::spreadForce
+(
+    const vectorField& v,
+    const bool advanceDrift
+)
 {
     const scalar dt = mesh_.time().deltaTValue();
     vectorField& F = nodeForce_;
@@ -452,7 +458,10 @@ void Foam::fv::immersedElasticForce::spreadForce(const vectorField& v)
     {
         if (tethered_[i] && tetherMobility_[i] > 0)
         {
-            tetherDrift_[i] += dt*v[i];
+            if (advanceDrift)
+            {
+                tetherDrift_[i] += dt*v[i];
+            }
             const vector Ft =
                 -(tetherRelaxation_*v[i] + tetherStiffness_*tetherDrift_[i]/dt)
                /(dt*tetherMobility_[i]);
@@ -530,6 +539,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     ),
     tethered_(),
     tetherDrift_(),
+    lastVelocity_(),
     tetherRank_(),
     stencilsBuilt_(false),
     tetherMobility_(),
@@ -540,6 +550,9 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     fluidForce_(Zero),
     wallForce_(Zero),
     outside_(0),
+    balanced_(false),
+    fluxVelocity_(false),
+    reconstruction_(),
     updateIndex_(mesh.time().timeIndex()),
     probes_(solidPtr_()),
     solidTime_(0),
@@ -598,6 +611,28 @@ Foam::fv::immersedElasticForce::immersedElasticForce
 
     tethered_.setSize(n, false);
     tetherDrift_.setSize(n, Zero);
+    lastVelocity_.setSize(n, Zero);
+    // the tethers' state of a restart: their drift and the velocity of
+    // the last update (their feedback)
+    for (const word file : {"tetherDrift", "tetherVelocity"})
+    {
+        if (!isFile(stateDir/file))
+        {
+            continue;
+        }
+        IFstream is(stateDir/file);
+        vectorField values(is);
+        if (values.size() != n)
+        {
+            FatalIOErrorInFunction(is)
+                << "fvOption " << name_ << ": " << is.name() << " holds "
+                << values.size() << " vectors for a solid of " << n
+                << " nodes: the restart state does not belong to this"
+                << " solid (remove " << stateDir << " to start the solid"
+                << " from its mesh)" << exit(FatalIOError);
+        }
+        (file == "tetherDrift" ? tetherDrift_ : lastVelocity_) = values;
+    }
     if (tetherRelaxation_ > 0 || tetherStiffness_ > 0)
     {
         forAll(free_, i)
@@ -609,7 +644,9 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     search_.reset(new meshSearch(mesh, polyMesh::CELL_TETS));
     updateStencils();
     setTetherMobility();
-    spreadForce(vectorField(n, Zero));
+    // the force of the start time: on a restart with the tethers' state,
+    // as the interrupted run had it for this step
+    spreadForce(lastVelocity_, false);
 
     label fixedNodes = 0;
     forAll(free_, i)
@@ -627,6 +664,9 @@ Foam::fv::immersedElasticForce::immersedElasticForce
         << " take their centre's value from their points; force on the fluid "
         << fluidForce_ << " N, on the walls " << wallForce_ << " N" << nl
         << endl;
+
+    // the solid's output at the start time
+    solidPtr_->write(true);
 }
 
 
@@ -641,7 +681,19 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
     const volVectorField& U
 ) const
 {
-    return gather(U.primitiveField());
+    if (!fluxVelocity_)
+    {
+        return gather(U.primitiveField());
+    }
+    // the reconstruction of the face flux the projection left, the velocity
+    // whose face balance holds the force (balancedForce)
+    if (!reconstruction_.valid())
+    {
+        reconstruction_.reset(new balancedForceFlux(mesh_));
+    }
+    const surfaceScalarField& phi =
+        mesh_.lookupObject<surfaceScalarField>("phi");
+    return gather(reconstruction_->reconstruct(phi)().primitiveField());
 }
 
 
@@ -675,19 +727,30 @@ void Foam::fv::immersedElasticForce::updateForce()
     updateStencils();
     searchTime_ += clock.timeIncrement();
 
-    spreadForce(v);
+    lastVelocity_ = v;
+    spreadForce(v, true);
     const scalar tForce = clock.timeIncrement();
     solidTime_ += tMove + tForce;
 
     scalar vMax = 0;
+    label iMax = -1;
     forAll(v, i)
     {
-        vMax = max(vMax, mag(v[i]));
+        if (mag(v[i]) > vMax)
+        {
+            vMax = mag(v[i]);
+            iMax = i;
+        }
     }
     Info<< type() << ' ' << name_ << ": force on the fluid " << fluidForce_
         << " N (tethers " << tetherForce_ << " N), on the walls "
         << wallForce_ << " N; fastest node "
         << vMax << " m/s";
+    if (iMax >= 0)
+    {
+        Info<< " (node " << iMax << " at " << solidPtr_->points()[iMax]
+            << ")";
+    }
     if (outside_)
     {
         Info<< "; " << outside_ << " free nodes outside the fluid mesh";
@@ -705,7 +768,21 @@ void Foam::fv::immersedElasticForce::write()
     {
         return;
     }
-    solidPtr_->writeState(runTime.timePath()/"uniform"/"immersedSolid");
+    const fileName dir(runTime.timePath()/"uniform"/"immersedSolid");
+    solidPtr_->writeState(dir);
+    // the tethers' state (drift and the last update's velocity) goes with
+    // the solid's
+    for (const word file : {"tetherDrift", "tetherVelocity"})
+    {
+        OFstream os(dir/file);
+        os.precision(17);
+        os << (file == "tetherDrift" ? tetherDrift_ : lastVelocity_);
+        if (!os.good())
+        {
+            FatalErrorInFunction
+                << "Cannot write " << os.name() << exit(FatalError);
+        }
+    }
     solidPtr_->write();
 }
 
@@ -740,6 +817,25 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << exit(FatalIOError);
     }
     deviatoricOnly_ = coeffs_.getOrDefault<bool>("deviatoricOnly", false);
+    balanced_ = coeffs_.getOrDefault<bool>("balancedForce", false);
+    const word nodeVelocity =
+        coeffs_.getOrDefault<word>("nodeVelocity", "cells");
+    if (nodeVelocity != "cells" && nodeVelocity != "flux")
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": nodeVelocity " << nodeVelocity
+            << " is not one of cells (the cells' velocity) or flux (the"
+            << " reconstruction of the face flux; with balancedForce yes)"
+            << exit(FatalIOError);
+    }
+    fluxVelocity_ = (nodeVelocity == "flux");
+    if (fluxVelocity_ && !balanced_)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": nodeVelocity flux needs"
+            << " balancedForce yes (the force's face flux is the transpose"
+            << " of the flux's reconstruction)" << exit(FatalIOError);
+    }
     smallCell_ = coeffs_.getOrDefault<scalar>("smallCell", 0.2);
     noSlipPoints_ = coeffs_.getOrDefault<bool>("noSlipPoints", false);
     tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);

@@ -238,7 +238,7 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
-    argList::addOption("test", "name", "solid | force | pairs | walk | interp | carried | balancedFlux | coverage | coupling | enclosed | outside | cutCells | wallInterp");
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | carried | carriedFlux | balancedFlux | coverage | coupling | enclosed | outside | cutCells | wallInterp");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -619,6 +619,179 @@ int main(int argc, char *argv[])
             FatalErrorInFunction << "carried: a check failed" << exit(FatalError);
         }
         Info<< "carried: all checks passed" << endl;
+    }
+    else if (test == "carriedFlux")
+    {
+        // fv::immersedElasticForce with balancedForce yes and nodeVelocity
+        // flux: the nodes move with the reconstruction of the face flux
+        // (not with the cells' velocity), and the force's face flux
+        // (balancedForceFlux::flux of the spread force, the projection's
+        // way in) is its transpose: sum_i v_i . F_i = rho sum_f phi_f
+        // flux_f/w_f over the faces, w_f = |S_f|/(n_f.d_f) (the faces'
+        // inner product of balancedForceFlux; exact where D_c = V_c I:
+        // tets)
+        const vector U0(0.3, -0.2, 0.5);
+        volVectorField U
+        (
+            IOobject("U", runTime.timeName(), mesh),
+            mesh,
+            dimensionedVector(dimVelocity, Zero)
+        );
+        surfaceScalarField phi
+        (
+            IOobject("phi", runTime.timeName(), mesh),
+            mesh.Sf() & dimensionedVector("U0", dimVelocity, U0)
+        );
+        dictionary optDict;
+        optDict.add("type", "immersedElasticForce");
+        optDict.add("selectionMode", "all");
+        optDict.add("rhoFluid", 1000.0);
+        optDict.add("balancedForce", true);
+        optDict.add("nodeVelocity", "flux");
+        fv::immersedElasticForce opt
+        (
+            "carried", "immersedElasticForce", optDict, mesh
+        );
+        const scalar rho = 1000.0;
+
+        // (1) a uniform flux with the cells at rest: every free node moves
+        // with the flux's velocity
+        const vectorField v0(opt.nodeVelocity(U));
+        const vectorField free(opt.solid().freeComponents());
+        scalar errUniform = 0;
+        label nFree = 0;
+        forAll(v0, i)
+        {
+            if (cmptSum(free[i]) > 0)
+            {
+                errUniform = max(errUniform, mag(v0[i] - U0)/mag(U0));
+                ++nFree;
+            }
+        }
+
+        // (2) a flux that varies from face to face (zero through the
+        // boundary, where the force's flux is zero too); the update
+        // strains the solid; the power of its force at the nodes'
+        // velocities against the power of the force's face flux
+        // phi_f = 1e-4 sin(k.x_f) (S_f . a): a flux field (opposite on
+        // the two sides of a processor face, as S_f)
+        const vector a(1, 0.7, -0.4);
+        auto wave = [](const point& x)
+        {
+            return 1e-4*Foam::sin(37*x.x() + 23*x.y() - 11*x.z());
+        };
+        forAll(phi, facei)
+        {
+            phi[facei] =
+                wave(mesh.Cf()[facei])*(mesh.Sf()[facei] & a);
+        }
+        for (auto& pphi : phi.boundaryFieldRef())
+        {
+            if (pphi.coupled())
+            {
+                const vectorField pCf(pphi.patch().Cf());
+                const vectorField pSf(pphi.patch().Sf());
+                forAll(pphi, i)
+                {
+                    pphi[i] = wave(pCf[i])*(pSf[i] & a);
+                }
+            }
+            else
+            {
+                pphi = 0;
+            }
+        }
+        U.primitiveFieldRef() = U0;     // the cells do not move the nodes
+        ++runTime;
+        opt.updateForce();
+        const vectorField v(opt.nodeVelocity(U));
+        const vectorField& F = opt.nodeForce();
+        scalar solidPower = 0, scale = 0;
+        forAll(F, i)
+        {
+            solidPower += v[i] & F[i];
+            scale += mag(v[i])*mag(F[i]);
+        }
+        volVectorField f
+        (
+            IOobject("fBalanced", runTime.timeName(), mesh),
+            mesh,
+            dimensionedVector(dimAcceleration, Zero),
+            zeroGradientFvPatchVectorField::typeName
+        );
+        f.primitiveFieldRef() = opt.force().field();
+        f.correctBoundaryConditions();
+        const balancedForceFlux balanced(mesh);
+        const surfaceScalarField phiF(balanced.flux(f));
+        const surfaceScalarField w(mesh.magSf()*mesh.nonOrthDeltaCoeffs());
+        scalar fluidPower = 0;
+        forAll(phiF, facei)
+        {
+            fluidPower += rho*phi[facei]*phiF[facei]/w[facei];
+        }
+        forAll(phiF.boundaryField(), patchi)
+        {
+            const fvsPatchScalarField& pF = phiF.boundaryField()[patchi];
+            if (!pF.coupled())
+            {
+                continue;
+            }
+            // a processor face is in both ranks' sums: half each
+            forAll(pF, i)
+            {
+                fluidPower += 0.5*rho*phi.boundaryField()[patchi][i]*pF[i]
+                   /w.boundaryField()[patchi][i];
+            }
+        }
+        reduce(fluidPower, sumOp<scalar>());
+        // negative control: the force's flux by linear interpolation,
+        // f_f . S_f (not the transpose)
+        const surfaceScalarField phiLinear(fvc::interpolate(f) & mesh.Sf());
+        scalar controlPower = 0;
+        forAll(phiLinear, facei)
+        {
+            controlPower += rho*phi[facei]*phiLinear[facei]/w[facei];
+        }
+        forAll(phiLinear.boundaryField(), patchi)
+        {
+            const fvsPatchScalarField& pF = phiLinear.boundaryField()[patchi];
+            if (pF.coupled())
+            {
+                forAll(pF, i)
+                {
+                    controlPower += 0.5*rho*phi.boundaryField()[patchi][i]
+                       *pF[i]/w.boundaryField()[patchi][i];
+                }
+            }
+        }
+        reduce(controlPower, sumOp<scalar>());
+        const scalar errPower = mag(fluidPower - solidPower)/scale;
+        const scalar errControl = mag(controlPower - solidPower)/scale;
+        Info<< "free nodes " << nFree << nl
+            << "uniform flux, cells at rest: largest relative error of the"
+            << " nodes' velocity " << errUniform << " (tolerance 1e-12)" << nl
+            << "power: solid sum v.F " << solidPower << " W, face fluxes"
+            << " rho sum phi phiF/w " << fluidPower << " W, relative"
+            << " difference " << errPower << " (tolerance 1e-12)" << nl
+            << "negative control, the force's flux by linear interpolation"
+            << " f_f.S_f: relative difference " << errControl
+            << " (must exceed 1e-3)" << endl;
+        bool ok = true;
+        auto check = [&](const bool pass, const char* what)
+        {
+            Info<< what << (pass ? "  PASS" : "  FAIL") << endl;
+            ok = ok && pass;
+        };
+        check(nFree > 0 && errUniform < 1e-12, "uniform flux");
+        check(max(mag(F)) > 0, "the update strains the solid");
+        check(errPower < 1e-12, "force flux is the transpose (power)");
+        check(errControl > 1e-3, "negative control differs");
+        if (!ok)
+        {
+            FatalErrorInFunction << "carriedFlux: a check failed"
+                << exit(FatalError);
+        }
+        Info<< "carriedFlux: all checks passed" << endl;
     }
     else if (test == "balancedFlux")
     {
