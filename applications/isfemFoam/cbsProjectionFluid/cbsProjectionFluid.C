@@ -4,6 +4,7 @@
 
 #include "cbsProjectionFluid.H"
 #include "Function1.H"
+#include "OStringStream.H"
 #include "fvCFD.H"
 #include "constrainHbyA.H"
 #include "constrainPressure.H"
@@ -355,15 +356,21 @@ Foam::scalar Foam::cbsProjectionFluid::maxDeltaT() const
     // afresh so that runTimeModifiable edits take effect
     const Time& runTime = mesh_.time();
     const dictionary& controlDict = runTime.controlDict();
-    if (!controlDict.found("maxDeltaT"))
+    const entry* e = controlDict.findEntry("maxDeltaT", keyType::LITERAL);
+    if (!e)
     {
         return GREAT;
     }
-    const scalar dt =
-        Function1<scalar>::New("maxDeltaT", controlDict)->value
-        (
-            runTime.value()
-        );
+    // made again only when the entry's text changes (a tableFile is not
+    // read from disk every step)
+    OStringStream text;
+    text << *e;
+    if (!maxDeltaT_.valid() || text.str() != maxDeltaTEntry_)
+    {
+        maxDeltaT_ = Function1<scalar>::New("maxDeltaT", controlDict);
+        maxDeltaTEntry_ = text.str();
+    }
+    const scalar dt = maxDeltaT_->value(runTime.value());
     if (!(dt > 0))
     {
         FatalIOErrorInFunction(controlDict)
