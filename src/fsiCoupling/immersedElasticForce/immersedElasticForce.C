@@ -152,23 +152,122 @@ Foam::label Foam::fv::immersedElasticForce::locate
 }
 
 
-void Foam::fv::immersedElasticForce::updateStencils()
+Foam::tmp<Foam::pointField>
+Foam::fv::immersedElasticForce::transferPoints() const
 {
     const pointField& x = solidPtr_->points();
-    const label n = x.size();
+    if (!elementPoints_)
+    {
+        return tmp<pointField>(new pointField(x));
+    }
+    const List<solidTet>& tets = solidPtr_->elements();
+    tmp<pointField> tq(new pointField(x.size() + tets.size()));
+    pointField& q = tq.ref();
+    SubList<point>(q, x.size()) = x;
+    forAll(tets, e)
+    {
+        const solidTet& t = tets[e];
+        q[x.size() + e] = 0.25*(x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]);
+    }
+    return tq;
+}
 
-    // the local cell of every free node, then the lowest rank holding it
+
+Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::toNodes
+(
+    const vectorField& uq
+) const
+{
+    const label n = solidPtr_->nPoints();
+    if (!elementPoints_)
+    {
+        return tmp<vectorField>(new vectorField(uq));
+    }
+    // v_a = (u_a + sum_{e ni a} V_e u_e / sum_{e ni a} V_e)/2: the lumped
+    // L2 projection onto the solid's linear elements of the fluid velocity
+    // sampled at the nodes and the centroids (the quadrature weight of each
+    // element split V_e/8 to each vertex, V_e/2 to the centroid; Griffith &
+    // Luo, Int J Numer Meth Biomed Eng 2017, Sect. 3: interaction at
+    // quadrature points dense enough that no fluid cell the solid passes
+    // through is left unsampled)
+    tmp<vectorField> tv(new vectorField(n, Zero));
+    vectorField& v = tv.ref();
+    forAll(v, a)
+    {
+        if (tethered_[a] || nodeElements_[a].empty())
+        {
+            v[a] = uq[a];
+            continue;
+        }
+        vector mean(Zero);
+        for (const label e : nodeElements_[a])
+        {
+            mean += elementVolume_[e]*uq[n + e];
+        }
+        v[a] = 0.5*uq[a] + 0.5*mean/nodeElementVolume_[a];
+    }
+    return tv;
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::fromNodes
+(
+    const vectorField& F
+) const
+{
+    if (!elementPoints_)
+    {
+        return tmp<vectorField>(new vectorField(F));
+    }
+    // the transpose of toNodes()
+    const label n = solidPtr_->nPoints();
+    tmp<vectorField> tFq(new vectorField(n + solidPtr_->nElements(), Zero));
+    vectorField& Fq = tFq.ref();
+    forAll(F, a)
+    {
+        if (tethered_[a] || nodeElements_[a].empty())
+        {
+            Fq[a] += F[a];
+            continue;
+        }
+        Fq[a] += 0.5*F[a];
+        const vector Fe = 0.5*F[a]/nodeElementVolume_[a];
+        for (const label e : nodeElements_[a])
+        {
+            Fq[n + e] += elementVolume_[e]*Fe;
+        }
+    }
+    return tFq;
+}
+
+
+void Foam::fv::immersedElasticForce::updateStencils()
+{
+    const tmp<pointField> tx(transferPoints());
+    const pointField& x = tx();
+    const label n = x.size();
+    const label nNodes = solidPtr_->nPoints();
+    // a tether (a node held in all components that holds the fluid), a
+    // held node that does not (no stencil); centroids are free
+    auto tether = [&](const label i) { return i < nNodes && tethered_[i]; };
+    auto held = [&](const label i)
+    {
+        return i < nNodes && cmptSum(free_[i]) == 0 && !tethered_[i];
+    };
+
+    // the local cell of every free transfer point, then the lowest rank
+    // holding it
     labelList rank(n, Pstream::nProcs());
     forAll(x, i)
     {
-        if (tethered_[i] && stencilsBuilt_)
+        if (tether(i) && stencilsBuilt_)
         {
             // a tether does not move: its stencil is the first one
             rank[i] = tetherRank_[i];
             continue;
         }
         nodeCell_[i] = -1;
-        if (cmptSum(free_[i]) == 0 && !tethered_[i])
+        if (held(i))
         {
             rank[i] = -1;
             continue;
@@ -196,7 +295,7 @@ void Foam::fv::immersedElasticForce::updateStencils()
     {
         if (rank[i] == Pstream::nProcs())
         {
-            if (!tethered_[i])
+            if (i < nNodes && !tethered_[i])
             {
                 ++outside_;
             }
@@ -245,7 +344,7 @@ void Foam::fv::immersedElasticForce::updateStencils()
             nodeCell_[i] = -1;
             continue;
         }
-        if (tethered_[i] && stencilsBuilt_)
+        if (tether(i) && stencilsBuilt_)
         {
             continue;
         }
@@ -307,6 +406,25 @@ void Foam::fv::immersedElasticForce::spread
     vectorField& s
 ) const
 {
+    spreadPoints(fromNodes(F), s);
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::gather
+(
+    const vectorField& u
+) const
+{
+    return toNodes(gatherPoints(u));
+}
+
+
+void Foam::fv::immersedElasticForce::spreadPoints
+(
+    const vectorField& F,
+    vectorField& s
+) const
+{
     // the transpose of gather(): the cell centre's share to the cell (or
     // to its points equally, setPointData()), every point's share over the
     // volume of the point's cells; s per unit fluid mass
@@ -357,12 +475,12 @@ void Foam::fv::immersedElasticForce::spread
 }
 
 
-Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::gather
+Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::gatherPoints
 (
     const vectorField& u
 ) const
 {
-    tmp<vectorField> tv(new vectorField(solidPtr_->nPoints(), Zero));
+    tmp<vectorField> tv(new vectorField(nodeCell_.size(), Zero));
     vectorField& v = tv.ref();
     const vectorField up(pointVelocity(u));
     forAll(v, i)
@@ -471,15 +589,16 @@ void Foam::fv::immersedElasticForce::spreadForce
     }
 
     vectorField& s = force_.field();
-    spread(F, s);
+    const vectorField Fq(fromNodes(F));
+    spreadPoints(Fq, s);
 
     const scalarField& V = mesh_.V();
     vector total(Zero);
-    forAll(F, i)
+    forAll(Fq, i)
     {
         if (nodeCell_[i] >= 0)
         {
-            total += F[i];
+            total += Fq[i];
         }
     }
     fluidForce_ = Zero;
@@ -509,6 +628,10 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     rhoFluid_(0),
     deviatoricOnly_(false),
     free_(),
+    elementPoints_(false),
+    nodeElements_(),
+    nodeElementVolume_(),
+    elementVolume_(),
     nodeCell_(),
     hint_(),
     nodePoints_(),
@@ -588,10 +711,41 @@ Foam::fv::immersedElasticForce::immersedElasticForce
 
     const label n = solidPtr_->nPoints();
     free_ = solidPtr_->freeComponents();
-    nodeCell_.setSize(n, -1);
-    hint_.setSize(n, -1);
-    nodePoints_.setSize(n);
-    nodeWeights_.setSize(n);
+    const label nq = n + (elementPoints_ ? solidPtr_->nElements() : 0);
+    nodeCell_.setSize(nq, -1);
+    hint_.setSize(nq, -1);
+    nodePoints_.setSize(nq);
+    nodeWeights_.setSize(nq);
+    if (elementPoints_)
+    {
+        // the elements' reference volumes and the nodes' elements
+        const List<solidTet>& tets = solidPtr_->elements();
+        const pointField& X = solidPtr_->points0();
+        elementVolume_.setSize(tets.size());
+        List<DynamicList<label>> around(n);
+        forAll(tets, e)
+        {
+            const solidTet& t = tets[e];
+            elementVolume_[e] = mag
+            (
+                ((X[t[1]] - X[t[0]]) ^ (X[t[2]] - X[t[0]])) & (X[t[3]] - X[t[0]])
+            )/6;
+            for (const label a : t)
+            {
+                around[a].append(e);
+            }
+        }
+        nodeElements_.setSize(n);
+        nodeElementVolume_.setSize(n, 0);
+        forAll(around, a)
+        {
+            nodeElements_[a].transfer(around[a]);
+            for (const label e : nodeElements_[a])
+            {
+                nodeElementVolume_[a] += elementVolume_[e];
+            }
+        }
+    }
 
     // A restart: the solid's state of the start time
     const fileName stateDir
@@ -658,7 +812,9 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     }
     Info<< type() << ' ' << name_ << ": " << n << " nodes ("
         << fixedNodes << " held), " << solidPtr_->nElements()
-        << " elements; " << outside_ << " free nodes outside the fluid mesh"
+        << " elements; transfer points: "
+        << (elementPoints_ ? "nodes and element centroids" : "nodes")
+        << "; " << outside_ << " free nodes outside the fluid mesh"
         << " (taken in their nearest cell); " << smallCells_ << " cells"
         << " smaller than " << smallCell_ << " of the cells around them"
         << " take their centre's value from their points; force on the fluid "
@@ -836,6 +992,22 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << " balancedForce yes (the force's face flux is the transpose"
             << " of the flux's reconstruction)" << exit(FatalIOError);
     }
+    const word transfer =
+        coeffs_.getOrDefault<word>("transferPoints", "nodes");
+    if (transfer != "nodes" && transfer != "elements")
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": transferPoints " << transfer
+            << " is not one of nodes (the solid's nodes) or elements (the"
+            << " nodes and every element's centroid)" << exit(FatalIOError);
+    }
+    if (nodeCell_.size() && (transfer == "elements") != elementPoints_)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": transferPoints cannot change"
+            << " during a run (restart the solver)" << exit(FatalIOError);
+    }
+    elementPoints_ = (transfer == "elements");
     smallCell_ = coeffs_.getOrDefault<scalar>("smallCell", 0.2);
     noSlipPoints_ = coeffs_.getOrDefault<bool>("noSlipPoints", false);
     tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);

@@ -238,6 +238,12 @@ label bruteCell
 
 int main(int argc, char *argv[])
 {
+    argList::addOption
+    (
+        "transferPoints", "word",
+        "carried, carriedFlux: immersedElasticForce's transferPoints"
+        " (nodes | elements; default nodes)"
+    );
     argList::addOption("test", "name", "solid | force | pairs | walk | interp | carried | carriedFlux | balancedFlux | coverage | coupling | enclosed | outside | cutCells | wallInterp");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
@@ -648,6 +654,11 @@ int main(int argc, char *argv[])
         optDict.add("rhoFluid", 1000.0);
         optDict.add("balancedForce", true);
         optDict.add("nodeVelocity", "flux");
+        optDict.add
+        (
+            "transferPoints",
+            args.getOrDefault<word>("transferPoints", "nodes")
+        );
         fv::immersedElasticForce opt
         (
             "carried", "immersedElasticForce", optDict, mesh
