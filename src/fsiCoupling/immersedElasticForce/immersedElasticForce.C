@@ -173,6 +173,15 @@ Foam::fv::immersedElasticForce::transferPoints() const
 }
 
 
+bool Foam::fv::immersedElasticForce::ownSample(const label a) const
+{
+    // a node held in every component (a tether, or a support whose force
+    // goes to the wall) keeps its own sample alone: its force does not
+    // reach the fluid through its elements' centroids
+    return cmptSum(free_[a]) == 0 || nodeElements_[a].empty();
+}
+
+
 Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::toNodes
 (
     const vectorField& uq
@@ -186,15 +195,15 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::toNodes
     // v_a = (u_a + sum_{e ni a} V_e u_e / sum_{e ni a} V_e)/2: the lumped
     // L2 projection onto the solid's linear elements of the fluid velocity
     // sampled at the nodes and the centroids (the quadrature weight of each
-    // element split V_e/8 to each vertex, V_e/2 to the centroid; Griffith &
-    // Luo, Int J Numer Meth Biomed Eng 2017, Sect. 3: interaction at
-    // quadrature points dense enough that no fluid cell the solid passes
-    // through is left unsampled)
+    // element split V_e/8 to each vertex, V_e/2 to the centroid;
+    // interaction points denser than the nodes, as in Griffith & Luo, Int
+    // J Numer Meth Biomed Eng 33(12) e2888, 2017, so that fewer of the
+    // fluid cells the solid passes through are left unsampled)
     tmp<vectorField> tv(new vectorField(n, Zero));
     vectorField& v = tv.ref();
     forAll(v, a)
     {
-        if (tethered_[a] || nodeElements_[a].empty())
+        if (ownSample(a))
         {
             v[a] = uq[a];
             continue;
@@ -225,7 +234,7 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::fromNodes
     vectorField& Fq = tFq.ref();
     forAll(F, a)
     {
-        if (tethered_[a] || nodeElements_[a].empty())
+        if (ownSample(a))
         {
             Fq[a] += F[a];
             continue;
