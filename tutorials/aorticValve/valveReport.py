@@ -14,7 +14,11 @@ Opening (forward pressure, dp > 0):
 Closing (back pressure, dp < 0):
   time to close      the first time after dp turns negative that GOA is
                      within 10 % of its value at the start (the closed
-                     valve's slits), if it happens
+                     valve's slits), if it happens; else, once the flow
+                     has stopped, the first time after GOA's peak under
+                     back pressure that it is within 10 % of its last
+                     value (the orifice the closed valve keeps under back
+                     pressure)
   flow stopped       the first time after the flow's reversal from which
                      the backward outlet flow, averaged over 2 ms, stays
                      below 5 % of the peak forward flow to the end (the
@@ -205,6 +209,18 @@ def main():
             vol = -np.trapz(q[w], t[w]) if w.sum() > 1 else 0.0
             print("  regurgitant volume from the flow's reversal (%.4f s) to"
                   " %.4f s: %.3e m3 (%.2f ml)" % (t_rev, t_end, vol, vol * 1e6))
+        if not closed.any() and t_stop is not None:
+            # the orifice the closed valve keeps (under back pressure the
+            # slits stand wider than at rest): after the area's peak under
+            # back pressure, the first time it is within 10 % of its last
+            # value (as the time to open: the first time near the plateau)
+            gb, tb = goa[back], t[back]
+            after = np.arange(len(gb)) >= np.argmax(gb)
+            near = after & (gb <= 1.10 * gb[-1])
+            k = np.argmax(near)
+            print("  closed: the orifice within 10 %% of the %.1f mm2 it keeps"
+                  " at the end at %.4f s, %.1f ms after the back pressure"
+                  % (gb[-1], tb[k], (tb[k] - t_back) * 1e3))
         # the window: the last LEAK_WINDOW, but not before the back
         # pressure (a run stopped early would count forward flow)
         t0 = max(t[-1] - LEAK_WINDOW, t_back)
