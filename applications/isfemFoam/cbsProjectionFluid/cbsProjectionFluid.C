@@ -7,6 +7,7 @@
 #include "OStringStream.H"
 #include "fvCFD.H"
 #include "constrainHbyA.H"
+#include "processorFvPatch.H"
 #include "constrainPressure.H"
 #include "adjustPhi.H"
 #include "immersedBoundary.H"
@@ -146,6 +147,25 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     if (fb)
     {
         HbyA.primitiveFieldRef() -= rAU.primitiveField()*fb->field();
+        // the processor faces take the changed cells of the other side
+        // (the flux of HbyA on them uses the neighbour's value as received
+        // at the last evaluation: without this the two sides' fluxes differ
+        // by the force's part and mass is not conserved across ranks)
+        volVectorField::Boundary& HbyAbf = HbyA.boundaryFieldRef();
+        forAll(HbyAbf, patchi)
+        {
+            if (isA<processorFvPatch>(mesh_.boundary()[patchi]))
+            {
+                HbyAbf[patchi].initEvaluate(Pstream::defaultCommsType);
+            }
+        }
+        forAll(HbyAbf, patchi)
+        {
+            if (isA<processorFvPatch>(mesh_.boundary()[patchi]))
+            {
+                HbyAbf[patchi].evaluate(Pstream::defaultCommsType);
+            }
+        }
         volVectorField f
         (
             IOobject("fBalanced", mesh_.time().timeName(), mesh_),
