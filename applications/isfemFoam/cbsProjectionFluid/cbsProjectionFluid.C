@@ -150,7 +150,11 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
         // the processor faces take the changed cells of the other side
         // (the flux of HbyA on them uses the neighbour's value as received
         // at the last evaluation: without this the two sides' fluxes differ
-        // by the force's part and mass is not conserved across ranks)
+        // by the force's part and mass is not conserved across ranks).
+        // Only these: HbyA.correctBoundaryConditions() would also evaluate
+        // the inlet and outlet patches, whose values constrainHbyA set
+        // (serial coarse valve: the inlet and outlet flows then differ by
+        // 4 %)
         volVectorField::Boundary& HbyAbf = HbyA.boundaryFieldRef();
         forAll(HbyAbf, patchi)
         {
