@@ -30,9 +30,11 @@ Writes PNGs into ./pictures (or -o DIR) and prints the files written:
                      (r = annulusRadius): the open area is the white part
                      inside the circle (its area, rasterised at 0.05 mm, in
                      the title);
-  metrics.png        every column of postProcessing/valveMetrics/0/
-                     valveMetrics.dat against time (skipped with a message
-                     when the file is missing).
+  metrics.png        every column of postProcessing/valveMetrics/<startTime>/
+                     valveMetrics.dat against time: the files of a run and
+                     its restarts joined, a restart's rows replacing the
+                     earlier ones from its first time on (skipped with a
+                     message when there is none).
 
 What it reads (paths relative to the case, options to change them):
 
@@ -456,6 +458,41 @@ def read_metrics(path):
     return names, table
 
 
+def metrics_files(case, name="valveMetrics"):
+    """postProcessing/<name>/<startTime>/<name>.dat of a run and its
+    restarts (one directory per start time), in the order of the start
+    times."""
+    d = os.path.join(case, "postProcessing", name)
+    found = []
+    if os.path.isdir(d):
+        for t in os.listdir(d):
+            path = os.path.join(d, t, name + ".dat")
+            try:
+                found.append((float(t), path))
+            except ValueError:
+                continue
+    return [path for _, path in sorted(found) if os.path.isfile(path)]
+
+
+def read_metrics_series(paths):
+    """(names, table) of the metrics files of a run and its restarts, in
+    the order of their start times: each file's rows replace the earlier
+    files' rows from its own first time on (a restart from an earlier
+    write repeats the times after it)."""
+    names, table = [], np.zeros((0, 0))
+    for path in paths:
+        n, t = read_metrics(path)
+        if not len(t):
+            continue
+        if len(table):
+            width = min(table.shape[1], t.shape[1])
+            table = np.vstack([table[table[:, 0] < t[0, 0], :width], t[:, :width]])
+            names = names[:width]
+        else:
+            names, table = n, t
+    return names, table
+
+
 # ---------------------------------------------------------------------------
 # The leaflets
 
@@ -868,8 +905,9 @@ def main():
     p.add_argument("--surface-name", default="valvePlane", help="surface file name")
     p.add_argument("--solid-dir", default=os.path.join("VTK", "solid"),
                    help="solid VTU directory (VTK/solid)")
-    p.add_argument("--metrics", default=os.path.join("postProcessing", "valveMetrics", "0",
-                                                     "valveMetrics.dat"))
+    p.add_argument("--metrics",
+                   help="one metrics file (default: postProcessing/valveMetrics/"
+                        "<startTime>/valveMetrics.dat of the run and its restarts, joined)")
     p.add_argument("--rho", type=float, default=1000.0, help="density for p (1000 kg/m3)")
     p.add_argument("--origin", help="valve origin 'x y z' (m), else system/valvePlane")
     p.add_argument("--axis", help="valve axis 'x y z'")
@@ -962,10 +1000,15 @@ def main():
         note("no solid files (%s): leaflet pictures skipped" % os.path.join(case, args.solid_dir))
 
     # 4. metrics (read before the orifice: its times)
-    mpath = os.path.join(case, args.metrics)
+    if args.metrics:
+        mpaths = [os.path.join(case, args.metrics)]
+    else:
+        mpaths = metrics_files(case)
+    mpath = ", ".join(mpaths) if mpaths else os.path.join(
+        case, "postProcessing", "valveMetrics", "<startTime>", "valveMetrics.dat")
     names, table = [], None
-    if os.path.exists(mpath):
-        names, table = read_metrics(mpath)
+    if mpaths and all(os.path.exists(m) for m in mpaths):
+        names, table = read_metrics_series(mpaths)
         if len(table):
             written += metrics_picture(names, table, outdir, args)
         else:
