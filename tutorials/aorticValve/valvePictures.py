@@ -459,19 +459,31 @@ def read_metrics(path):
 
 
 def metrics_files(case, name="valveMetrics"):
-    """postProcessing/<name>/<startTime>/<name>.dat of a run and its
-    restarts (one directory per start time), in the order of the start
-    times."""
+    """The metrics files of a run and its restarts, oldest first.
+
+    OpenFOAM's writeFile puts a run's file in postProcessing/<name>/<start
+    time>/<name>.dat; a run restarted from the same time finds that file
+    there and writes <name>_<its time>.dat beside it instead. The files are
+    ordered by start directory, then the plain name before the suffixed one,
+    then the suffix's time."""
     d = os.path.join(case, "postProcessing", name)
     found = []
     if os.path.isdir(d):
         for t in os.listdir(d):
-            path = os.path.join(d, t, name + ".dat")
             try:
-                found.append((float(t), path))
+                start = float(t)
             except ValueError:
                 continue
-    return [path for _, path in sorted(found) if os.path.isfile(path)]
+            for path in glob.glob(os.path.join(d, t, name + "*.dat")):
+                stem = os.path.basename(path)[:-len(".dat")]
+                if stem == name:
+                    found.append((start, 0, 0.0, path))
+                    continue
+                try:
+                    found.append((start, 1, float(stem[len(name) + 1:]), path))
+                except ValueError:
+                    continue  # another function object's <name>Foo.dat
+    return [f[-1] for f in sorted(found)]
 
 
 def read_metrics_series(paths):

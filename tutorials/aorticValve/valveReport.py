@@ -150,23 +150,20 @@ def leak_through_valve(case, t, q, t0):
 
 
 def read(case):
-    files = glob.glob(os.path.join(case, "postProcessing", "valveMetrics",
-                                   "*", "valveMetrics*.dat"))
+    """The metrics series of a run and its restarts, joined by
+    valvePictures.py (a restart's rows replace the earlier rows from its
+    first time on), as {name without its [unit]: column}."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from valvePictures import metrics_files, read_metrics_series
+    files = metrics_files(case)
     if not files:
-        sys.exit("valveReport.py: no postProcessing/valveMetrics/*/"
-                 "valveMetrics.dat in %s" % case)
-    files.sort(key=lambda p: float(os.path.basename(os.path.dirname(p))))
-    names, rows = None, []
-    for path in files:
-        with open(path) as f:
-            for line in f:
-                if line.startswith("#"):
-                    names = [n.split("[")[0] for n in line[1:].split()]
-                elif line.strip():
-                    r = [float(x) for x in line.split()]
-                    rows = [q for q in rows if q[0] < r[0]] + [r]
-    data = np.array(rows)
-    return {n: data[:, i] for i, n in enumerate(names)}
+        sys.exit("valveReport.py: no postProcessing/valveMetrics/<startTime>/"
+                 "valveMetrics.dat in %s: run isfemFoam with the valveMetrics "
+                 "function object first" % case)
+    names, data = read_metrics_series(files)
+    if not len(data):
+        sys.exit("valveReport.py: no data rows in %s" % ", ".join(files))
+    return {n.split("[")[0]: data[:, i] for i, n in enumerate(names)}
 
 
 def midline_turning(path, leaflet, bands=10, halfAngle=10.0):
