@@ -124,7 +124,7 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::pointVelocity
 }
 
 
-Foam::label Foam::fv::immersedElasticForce::locate
+Foam::label Foam::fv::immersedElasticForce::walk
 (
     const point& x,
     const label hint
@@ -144,6 +144,16 @@ Foam::label Foam::fv::immersedElasticForce::locate
             }
         }
     }
+    return -1;
+}
+
+
+Foam::label Foam::fv::immersedElasticForce::treeSearch
+(
+    const point& x,
+    const label hint
+) const
+{
     if (!bounds_.contains(x))
     {
         return -1;
@@ -265,8 +275,13 @@ void Foam::fv::immersedElasticForce::updateStencils()
     };
 
     // the local cell of every free transfer point, then the lowest rank
-    // holding it
+    // holding it. First a walk from the point's last cell, which finds
+    // nearly every point (it moves less than a cell per step); then the
+    // octree on every rank for the points no rank found so (in parallel,
+    // a point held by another rank would otherwise be looked for in this
+    // rank's octree at every step)
     labelList rank(n, Pstream::nProcs());
+    boolList unfound(n, false);
     forAll(x, i)
     {
         if (tether(i) && stencilsBuilt_)
@@ -281,12 +296,34 @@ void Foam::fv::immersedElasticForce::updateStencils()
             rank[i] = -1;
             continue;
         }
-        const label celli = locate(x[i], hint_[i]);
+        const label celli = walk(x[i], hint_[i]);
         if (celli >= 0)
         {
             nodeCell_[i] = celli;
             hint_[i] = celli;
             rank[i] = Pstream::myProcNo();
+        }
+        else
+        {
+            unfound[i] = true;
+        }
+    }
+    if (Pstream::parRun())
+    {
+        Pstream::listCombineGather(rank, minEqOp<label>());
+        Pstream::listCombineScatter(rank);
+    }
+    forAll(x, i)
+    {
+        if (unfound[i] && rank[i] == Pstream::nProcs())
+        {
+            const label celli = treeSearch(x[i], hint_[i]);
+            if (celli >= 0)
+            {
+                nodeCell_[i] = celli;
+                hint_[i] = celli;
+                rank[i] = Pstream::myProcNo();
+            }
         }
     }
     Pstream::listCombineGather(rank, minEqOp<label>());
@@ -561,6 +598,7 @@ void Foam::fv::immersedElasticForce::spreadForce
 )
 {
     const scalar dt = mesh_.time().deltaTValue();
+    clockTime clock;
     vectorField& F = nodeForce_;
     string why;
     if (!solid_->interactionForce(dt, deviatoricOnly_, F, why))
@@ -572,6 +610,7 @@ void Foam::fv::immersedElasticForce::spreadForce
             << " system/controlDict (the leaflets' stiffness limits the"
             << " step of this coupling)" << exit(FatalError);
     }
+    solidTime_ += clock.timeIncrement();
 
     // The tethers: a node held still (the attachment, sewn to the root)
     // holds the fluid at rest where it is. The fluid at it would otherwise
@@ -618,6 +657,7 @@ void Foam::fv::immersedElasticForce::spreadForce
     reduce(fluidForce_, sumOp<vector>());
     reduce(total, sumOp<vector>());
     wallForce_ = total - fluidForce_;
+    forceTime_ += clock.timeIncrement();
 }
 
 
@@ -688,7 +728,8 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     updateIndex_(mesh.time().timeIndex()),
     probes_(solidPtr_()),
     solidTime_(0),
-    searchTime_(0)
+    searchTime_(0),
+    forceTime_(0)
 {
     read(dict);
 
@@ -877,6 +918,7 @@ void Foam::fv::immersedElasticForce::updateForce()
     const volVectorField& U =
         mesh_.lookupObject<volVectorField>(fieldNames_[0]);
     const vectorField v(nodeVelocity(U));
+    forceTime_ += clock.timeIncrement();
     string why;
     if (!solid_->tryMoveWith(v, dt, why))
     {
@@ -887,15 +929,13 @@ void Foam::fv::immersedElasticForce::updateForce()
             << " system/controlDict (the leaflets' stiffness limits the"
             << " step of this coupling)" << exit(FatalError);
     }
-    const scalar tMove = clock.timeIncrement();
+    solidTime_ += clock.timeIncrement();
 
     updateStencils();
     searchTime_ += clock.timeIncrement();
 
     lastVelocity_ = v;
-    spreadForce(v, true);
-    const scalar tForce = clock.timeIncrement();
-    solidTime_ += tMove + tForce;
+    spreadForce(v, true);   // adds to solidTime_ and forceTime_
 
     scalar vMax = 0;
     label iMax = -1;
@@ -921,7 +961,7 @@ void Foam::fv::immersedElasticForce::updateForce()
         Info<< "; " << outside_ << " free nodes outside the fluid mesh";
     }
     Info<< nl << "    time: solid " << solidTime_ << " s, search "
-        << searchTime_ << " s" << endl;
+        << searchTime_ << " s, force " << forceTime_ << " s" << endl;
 }
 
 
