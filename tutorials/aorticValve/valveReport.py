@@ -196,6 +196,19 @@ def midline_turning(path, leaflet, bands=10, halfAngle=10.0):
     return turn[:half].mean(), turn[half:].mean()
 
 
+def curvature_shape(lower, upper, straight=0.5):
+    """The mid-line's shape from its mean turning over the lower and upper
+    halves (degrees per segment, midline_turning): 'flat' (both below
+    1e-9), 'a half nearly straight' (one below `straight`), 'reverses'
+    (opposite signs: the curvature reversal of an open leaflet) or 'one
+    way'."""
+    if max(abs(lower), abs(upper)) < 1e-9:
+        return "flat"
+    if min(abs(lower), abs(upper)) < straight:
+        return "a half nearly straight"
+    return "reverses" if lower * upper < 0 else "one way"
+
+
 def curvature_report(case, t_open):
     files = glob.glob(os.path.join(case, "VTK", "solid", "solid_*.vtu"))
     times = {}
@@ -219,10 +232,7 @@ def curvature_report(case, t_open):
             out.append("leaflet %d: too few nodes" % (k + 1))
             continue
         lower, upper = r
-        if min(abs(lower), abs(upper)) < 0.5:
-            shape = "a half nearly straight"
-        else:
-            shape = "reverses" if lower * upper < 0 else "one way"
+        shape = curvature_shape(lower, upper)
         out.append("leaflet %d %+.1f / %+.1f deg (%s)"
                    % (k + 1, lower, upper, shape))
     print("  curvature of the mid-lines at %.4f s, mean turning per segment"

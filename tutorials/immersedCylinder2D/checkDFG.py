@@ -2,7 +2,7 @@
 """Immersed DFG benchmark 2D-1 (Schaefer & Turek 1996): c_D of the force of
 the fluid on the immersed cylinder (postProcessing/cylinder/0/
 immersedForcing.dat, written by the immersedForcing fvOption) against the
-reference of docs/references.md (2 %, issue 9); c_L reported; the force and
+reference of docs/references.md (2 %); c_L reported; the force and
 the fluid's momentum source balance (action and reaction, 1 %)."""
 import os
 import sys

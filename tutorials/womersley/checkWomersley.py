@@ -34,31 +34,44 @@ rows = v.read_table(os.path.join(
 tEnd = rows[-1][0]
 last = [(r[0], r[3]) for r in rows if r[0] > tEnd - T - 1e-9]
 
-# Normal equations of the 3-parameter fit (numpy-free)
-basis = [lambda t: math.sin(omega * t), lambda t: math.cos(omega * t),
-         lambda t: 1.0]
-A = [[sum(f(t) * g(t) for t, _ in last) for g in basis] for f in basis]
-b = [sum(f(t) * u for t, u in last) for f in basis]
-# Gaussian elimination
-n = 3
-for i in range(n):
-    p = max(range(i, n), key=lambda k: abs(A[k][i]))
-    A[i], A[p], b[i], b[p] = A[p], A[i], b[p], b[i]
-    for k in range(i + 1, n):
-        f = A[k][i] / A[i][i]
-        for j in range(i, n):
-            A[k][j] -= f * A[i][j]
-        b[k] -= f * b[i]
-x = [0.0] * n
-for i in reversed(range(n)):
-    x[i] = (b[i] - sum(A[i][j] * x[j] for j in range(i + 1, n))) / A[i][i]
-a_s, a_c, mean = x
-amp = math.hypot(a_s, a_c)
-phase = math.degrees(math.atan2(a_c, a_s))
+
+def fit(samples):
+    """Least squares a sin(wt) + b cos(wt) + c (normal equations, numpy-free):
+    amplitude, phase [deg] and mean."""
+    basis = [lambda t: math.sin(omega * t), lambda t: math.cos(omega * t),
+             lambda t: 1.0]
+    A = [[sum(f(t) * g(t) for t, _ in samples) for g in basis] for f in basis]
+    b = [sum(f(t) * u for t, u in samples) for f in basis]
+    n = 3
+    for i in range(n):       # Gaussian elimination, partial pivoting
+        p = max(range(i, n), key=lambda k: abs(A[k][i]))
+        A[i], A[p], b[i], b[p] = A[p], A[i], b[p], b[i]
+        for k in range(i + 1, n):
+            f = A[k][i] / A[i][i]
+            for j in range(i, n):
+                A[k][j] -= f * A[i][j]
+            b[k] -= f * b[i]
+    x = [0.0] * n
+    for i in reversed(range(n)):
+        x[i] = (b[i] - sum(A[i][j] * x[j] for j in range(i + 1, n))) / A[i][i]
+    a_s, a_c, c = x
+    return math.hypot(a_s, a_c), math.degrees(math.atan2(a_c, a_s)), c
+
+
+amp, phase, mean = fit(last)
+# Negative control: the same samples one time step late (a solver whose
+# velocity lags the pressure gradient by a step, omega dt = 1.8 deg at 200
+# steps per period) must fail the phase tolerance
+dt = rows[-1][0] - rows[-2][0]
+_, phase_lag, _ = fit([(t + dt, u) for t, u in last])
 
 print("Womersley flow, alpha = %g, last period t = %.4f..%.4f s (%d samples)"
       % (alpha, tEnd - T, tEnd, len(last)))
 v.relative("centreline amplitude", amp, amp_ref, 3.0)
-v.absolute("centreline phase [deg]", phase, phase_ref, 5.0, "deg")
+PHASE_TOL = 1.5     # deg: below one step's 1.8 deg, so a one-step lag fails
+v.absolute("centreline phase [deg]", phase, phase_ref, PHASE_TOL, "deg")
+v.condition("negative control: phase one step late", phase_lag,
+            "against %.3f +- %g deg: must fail" % (phase_ref, PHASE_TOL),
+            abs(phase_lag - phase_ref) > PHASE_TOL)
 v.report("mean over the period", mean, 0.0)
 v.finish()

@@ -14,6 +14,7 @@
 #include "coupledFvPatch.H"
 #include "triSurfaceSearch.H"
 #include "treeDataPrimitivePatch.H"
+#include "registerSwitch.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -21,6 +22,17 @@ namespace Foam
 {
     defineTypeNameAndDebug(immersedBoundary, 0);
 }
+
+int Foam::immersedBoundary::processorExchange
+(
+    Foam::debug::optimisationSwitch("immersedProcessorExchange", 1)
+);
+registerOptSwitch
+(
+    "immersedProcessorExchange",
+    int,
+    Foam::immersedBoundary::processorExchange
+);
 
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
@@ -156,8 +168,11 @@ void Foam::immersedBoundary::update
                 }
             }
         }
-        syncTools::swapBoundaryFaceList(mesh_, nbrCovered_);
-        syncTools::swapBoundaryFaceList(mesh_, nbrVelocity_);
+        if (processorExchange)
+        {
+            syncTools::swapBoundaryFaceList(mesh_, nbrCovered_);
+            syncTools::swapBoundaryFaceList(mesh_, nbrVelocity_);
+        }
     }
 
     // Immersed faces: every face of a covered cell (internal, or coupled

@@ -2056,7 +2056,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
             // centres lie within microns of the surface, were cut and
             // their neighbours across the flag covered: the split is not
             // continuous in the surface's position (src/fsiCoupling/
-            // README.md; issue 10)
+            // README.md)
             FatalIOErrorInFunction(coeffs_)
                 << "cutCells yes: only for a rigid solid in a serial run"
                 << " for now (experimental; deformable solids and parallel"
