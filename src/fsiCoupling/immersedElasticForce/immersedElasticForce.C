@@ -5,7 +5,7 @@
 #include "immersedElasticForce.H"
 #include "deformableSolid.H"
 #include "fvMatrices.H"
-#include "wallPolyPatch.H"
+#include "readEnumEntry.H"
 #include "tetIndices.H"
 #include "clockTime.H"
 #include "syncTools.H"
@@ -23,6 +23,13 @@ namespace fv
     addToRunTimeSelectionTable(option, immersedElasticForce, dictionary);
 }
 }
+
+const Foam::Enum<Foam::fv::immersedElasticForce::pointSet>
+Foam::fv::immersedElasticForce::pointSetNames
+({
+    { pointSet::nodes, "nodes" },
+    { pointSet::elements, "elements" },
+});
 
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
@@ -42,20 +49,6 @@ void Foam::fv::immersedElasticForce::setPointData()
         pointVolume_[pointi] = sum;
     }
     syncTools::syncPointList(mesh_, pointVolume_, plusEqOp<scalar>(), 0.0);
-
-    wallPoint_.setSize(mesh_.nPoints());
-    wallPoint_ = false;
-    for (const polyPatch& pp : mesh_.boundaryMesh())
-    {
-        if (noSlipPoints_ && isA<wallPolyPatch>(pp))
-        {
-            for (const label pointi : pp.meshPoints())
-            {
-                wallPoint_[pointi] = true;
-            }
-        }
-    }
-    syncTools::syncPointList(mesh_, wallPoint_, orEqOp<bool>(), false);
 
     // A cell's centre carries its own value unless the cell is much
     // smaller than the cells around it: with its own value a node's force
@@ -105,10 +98,6 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::pointVelocity
     vectorField& up = tup.ref();
     forAll(pointCells, pointi)
     {
-        if (wallPoint_[pointi])
-        {
-            continue;
-        }
         for (const label celli : pointCells[pointi])
         {
             up[pointi] += V[celli]*u[celli];
@@ -117,8 +106,7 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::pointVelocity
     syncTools::syncPointList(mesh_, up, plusEqOp<vector>(), vector::zero);
     forAll(up, pointi)
     {
-        up[pointi] =
-            wallPoint_[pointi] ? vector::zero : up[pointi]/pointVolume_[pointi];
+        up[pointi] /= pointVolume_[pointi];
     }
     return tup;
 }
@@ -508,7 +496,7 @@ void Foam::fv::immersedElasticForce::spreadPoints
     const labelListList& pointCells = mesh_.pointCells();
     forAll(pointF, pointi)
     {
-        if (wallPoint_[pointi] || pointF[pointi] == vector::zero)
+        if (pointF[pointi] == vector::zero)
         {
             continue;
         }
@@ -601,7 +589,7 @@ void Foam::fv::immersedElasticForce::spreadForce
     clockTime clock;
     vectorField& F = nodeForce_;
     string why;
-    if (!solid_->interactionForce(dt, deviatoricOnly_, F, why))
+    if (!solid_->interactionForce(dt, F, why))
     {
         FatalErrorInFunction
             << "fvOption " << name_ << ": the immersed solid failed at time "
@@ -675,7 +663,6 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     solidPtr_(immersedSolid::New(mesh.time())),
     solid_(dynamic_cast<immersedSolids::deformable*>(solidPtr_.get())),
     rhoFluid_(0),
-    deviatoricOnly_(false),
     free_(),
     elementPoints_(false),
     nodeElements_(),
@@ -686,21 +673,16 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     nodePoints_(),
     nodeWeights_(),
     pointVolume_(),
-    wallPoint_(),
     search_(),
     bounds_(),
     ownCentre_(),
     smallCell_(0.2),
-    noSlipPoints_(false),
     smallCells_(0),
     force_
     (
         IOobject
         (
-            dict.optionalSubDict(modelType + "Coeffs")
-               .getOrDefault<bool>("balancedForce", false)
-          ? "immersedBalancedForce"
-          : "immersedElasticForce",
+            "immersedBalancedForce",
             mesh.time().timeName(),
             mesh,
             IOobject::NO_READ,
@@ -722,8 +704,6 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     fluidForce_(Zero),
     wallForce_(Zero),
     outside_(0),
-    balanced_(false),
-    fluxVelocity_(false),
     reconstruction_(),
     updateIndex_(mesh.time().timeIndex()),
     probes_(solidPtr_()),
@@ -887,10 +867,6 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
     const volVectorField& U
 ) const
 {
-    if (!fluxVelocity_)
-    {
-        return gather(U.primitiveField());
-    }
     // the reconstruction of the face flux the projection left, the velocity
     // whose face balance holds the force (balancedForce)
     if (!reconstruction_.valid())
@@ -1021,44 +997,23 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << " must be positive (the fluid's density in kg/m^3)"
             << exit(FatalIOError);
     }
-    deviatoricOnly_ = coeffs_.getOrDefault<bool>("deviatoricOnly", false);
-    balanced_ = coeffs_.getOrDefault<bool>("balancedForce", false);
-    const word nodeVelocity =
-        coeffs_.getOrDefault<word>("nodeVelocity", "cells");
-    if (nodeVelocity != "cells" && nodeVelocity != "flux")
-    {
-        FatalIOErrorInFunction(coeffs_)
-            << "fvOption " << name_ << ": nodeVelocity " << nodeVelocity
-            << " is not one of cells (the cells' velocity) or flux (the"
-            << " reconstruction of the face flux; with balancedForce yes)"
-            << exit(FatalIOError);
-    }
-    fluxVelocity_ = (nodeVelocity == "flux");
-    if (fluxVelocity_ && !balanced_)
-    {
-        FatalIOErrorInFunction(coeffs_)
-            << "fvOption " << name_ << ": nodeVelocity flux needs"
-            << " balancedForce yes (the force's face flux is the transpose"
-            << " of the flux's reconstruction)" << exit(FatalIOError);
-    }
-    const word transfer =
-        coeffs_.getOrDefault<word>("transferPoints", "nodes");
-    if (transfer != "nodes" && transfer != "elements")
-    {
-        FatalIOErrorInFunction(coeffs_)
-            << "fvOption " << name_ << ": transferPoints " << transfer
-            << " is not one of nodes (the solid's nodes) or elements (the"
-            << " nodes and every element's centroid)" << exit(FatalIOError);
-    }
-    if (nodeCell_.size() && (transfer == "elements") != elementPoints_)
+    const bool elements =
+        readEnumEntry
+        (
+            pointSetNames,
+            "transferPoints",
+            coeffs_,
+            pointSet::nodes,
+            "fvOption " + name_
+        ) == pointSet::elements;
+    if (nodeCell_.size() && elements != elementPoints_)
     {
         FatalIOErrorInFunction(coeffs_)
             << "fvOption " << name_ << ": transferPoints cannot change"
             << " during a run (restart the solver)" << exit(FatalIOError);
     }
-    elementPoints_ = (transfer == "elements");
+    elementPoints_ = elements;
     smallCell_ = coeffs_.getOrDefault<scalar>("smallCell", 0.2);
-    noSlipPoints_ = coeffs_.getOrDefault<bool>("noSlipPoints", false);
     tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);
     tetherStiffness_ = coeffs_.getOrDefault<scalar>("tetherStiffness", 0.1);
     if

@@ -297,21 +297,13 @@ std::vector<Vec3> ExplicitSolid::internalForce(const std::vector<Vec3>& u) const
             }
             switch (use.part) {
                 case StressPart::Full:
-                    if (deviatoricOnly_) {
-                        P[d] = a ? m.stressDeviatoric(F[d], (*a)[d]) : m.stressDeviatoric(F[d]);
-                    } else {
-                        P[d] = a ? m.firstPK(F[d], (*a)[d]) : m.firstPK(F[d]);
-                    }
+                    P[d] = a ? m.firstPK(F[d], (*a)[d]) : m.firstPK(F[d]);
                     break;
                 case StressPart::Deviatoric:
                     P[d] = a ? m.stressDeviatoric(F[d], (*a)[d]) : m.stressDeviatoric(F[d]);
                     break;
                 case StressPart::Volumetric:
-                    if (deviatoricOnly_) {
-                        P[d].setZero();
-                    } else {
-                        P[d] = m.stressVolumetric(F[d]);
-                    }
+                    P[d] = m.stressVolumetric(F[d]);
                     break;
             }
             if (!P[d].allFinite()) {
@@ -594,7 +586,7 @@ void ExplicitSolid::correctVelocity(const std::vector<Vec3>& dv, double dt)
     }
 }
 
-std::vector<Vec3> ExplicitSolid::interactionForce(double dt, bool deviatoricOnly)
+std::vector<Vec3> ExplicitSolid::interactionForce(double dt)
 {
     if (!(dt > 0) || !std::isfinite(dt)) {
         throw Error("ExplicitSolid::interactionForce: the step must be positive and finite, not " +
@@ -602,16 +594,13 @@ std::vector<Vec3> ExplicitSolid::interactionForce(double dt, bool deviatoricOnly
     }
     if (loadUpdate_) loadUpdate_(t_);
     std::vector<Vec3> f;
-    deviatoricOnly_ = deviatoricOnly;
     carried_ = true;
     try {
         accelerationForces(f, dt);
     } catch (...) {
-        deviatoricOnly_ = false;
         carried_ = false;
         throw;
     }
-    deviatoricOnly_ = false;
     carried_ = false;
     const std::vector<Vec3> free = freeComponents();
     const int nn = mesh_->nNodes();

@@ -100,16 +100,12 @@ public:
     // solid). interactionForce() is the force the solid's stress, its loads
     // and contact exert at the current state, f_ext + m g - f_int(u + beta v)
     // + f_contact (Eq. 42 without the inertia), zero in the components a
-    // constraint holds (the support takes it). With deviatoricOnly the
-    // volumetric stress is left out of f_int: an incompressible solid's
-    // pressure is the fluid's, which the fluid's projection already holds
-    // (Zhang et al., Eq. 10), and the bulk modulus would only add the
-    // stiffest modes. dt: the carrying fluid's step; the contact springs
+    // constraint holds (the support takes it). dt: the carrying fluid's step; the contact springs
     // are bounded by it with the nodes' own mass, not by the elements'
     // stable step, which the fluid's larger mass makes irrelevant (with the
     // elements' bound, the springs would get no budget at a step longer
     // than the solid's own stable step, and contact would do nothing).
-    std::vector<Vec3> interactionForce(double dt, bool deviatoricOnly);
+    std::vector<Vec3> interactionForce(double dt);
     // Moves every node component no constraint holds by dt v and sets its
     // velocity to v; constrained components follow their constraint. Time
     // and step count advance by dt and one step. Throws naming the node on
@@ -270,7 +266,6 @@ private:
     mutable std::vector<Vec3> work_;
     std::vector<Vec3> x_;  // current coordinates, for the contact search
     std::vector<Vec3> uDamped_;  // u + beta v (stiffness damping)
-    bool deviatoricOnly_ = false;  // interactionForce(): no volumetric stress
     bool carried_ = false;         // interactionForce(): contact springs not
                                    // bounded by the elements' stable step
     std::vector<double> zeroOmega2_;

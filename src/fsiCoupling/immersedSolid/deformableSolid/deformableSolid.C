@@ -605,7 +605,6 @@ void Foam::immersedSolids::deformable::correctVelocity
 bool Foam::immersedSolids::deformable::interactionForce
 (
     const scalar dt,
-    const bool deviatoricOnly,
     vectorField& f,
     string& why
 )
@@ -618,7 +617,7 @@ bool Foam::immersedSolids::deformable::interactionForce
     try
     {
         const std::vector<smoothedSolid::Vec3> fs =
-            solid_->interactionForce(dt, deviatoricOnly);
+            solid_->interactionForce(dt);
         f.setSize(fs.size());
         forAll(f, i)
         {
