@@ -12,6 +12,7 @@
 #include "OFstream.H"
 #include "IFstream.H"
 #include "coupledFvPatch.H"
+#include "processorPolyPatch.H"
 #include "triSurfaceSearch.H"
 #include "treeDataPrimitivePatch.H"
 #include "registerSwitch.H"
@@ -459,6 +460,68 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::ghostVelocity
 }
 
 
+void Foam::immersedBoundary::constrainCoupled
+(
+    fvMatrix<vector>& eqn,
+    const vectorField& values
+) const
+{
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const label nInternal = mesh_.nInternalFaces();
+    scalarField& diag = eqn.diag();
+    Field<vector>& source = eqn.source();
+
+    // The covered side: the face's coefficient in the diagonal (as
+    // fvMatrix::D() counts it), the value to the other side
+    vectorField nbrValue(mesh_.nBoundaryFaces(), Zero);
+    forAll(pbm, patchi)
+    {
+        if (!isA<processorPolyPatch>(pbm[patchi]))
+        {
+            continue;
+        }
+        const labelUList& faceCells = pbm[patchi].faceCells();
+        Field<vector>& ic = eqn.internalCoeffs()[patchi];
+        Field<vector>& bc = eqn.boundaryCoeffs()[patchi];
+        const label start = pbm[patchi].start() - nInternal;
+        forAll(faceCells, i)
+        {
+            const label ci = coveredIndex_[faceCells[i]];
+            if (ci >= 0)
+            {
+                diag[faceCells[i]] += cmptAv(ic[i]);
+                ic[i] = Zero;
+                bc[i] = Zero;
+                nbrValue[start + i] = values[ci];
+            }
+        }
+    }
+    syncTools::swapBoundaryFaceList(mesh_, nbrValue);
+
+    // The fluid side: the covered cell's value in the source, as
+    // setValues does for the neighbour of an internal face
+    forAll(pbm, patchi)
+    {
+        if (!isA<processorPolyPatch>(pbm[patchi]))
+        {
+            continue;
+        }
+        const labelUList& faceCells = pbm[patchi].faceCells();
+        Field<vector>& bc = eqn.boundaryCoeffs()[patchi];
+        const label start = pbm[patchi].start() - nInternal;
+        forAll(faceCells, i)
+        {
+            if (!covered(faceCells[i]) && nbrCovered_[start + i])
+            {
+                source[faceCells[i]] +=
+                    cmptMultiply(bc[i], nbrValue[start + i]);
+                bc[i] = Zero;
+            }
+        }
+    }
+}
+
+
 void Foam::immersedBoundary::slip
 (
     const volVectorField& U,
@@ -509,6 +572,29 @@ void Foam::immersedBoundary::slip
         const vector uWall(U[Cc] + lambda*(U[F] - U[Cc]));
         sumSqr += magSqr(uWall - coveredVelocity_[coveredIndex_[Cc]]);
         ++count;
+    }
+
+    // The wall points of the coupled faces, on their covered side (as
+    // ghostVelocity: every rank takes part in the exchange)
+    if (Pstream::parRun())
+    {
+        const label nInt = internalFaces_.size();
+        vectorField nbrU;
+        syncTools::swapBoundaryCellList(mesh_, U.primitiveField(), nbrU);
+        forAll(boundaryFaces_, j)
+        {
+            const scalar lambda = wallFraction_[nInt + j];
+            if (lambda < 0)
+            {
+                continue;
+            }
+            const label facei = boundaryFaces_[j];
+            const label Cc = mesh_.faceOwner()[facei];
+            const vector& uF = nbrU[facei - mesh_.nInternalFaces()];
+            const vector uWall(U[Cc] + lambda*(uF - U[Cc]));
+            sumSqr += magSqr(uWall - coveredVelocity_[coveredIndex_[Cc]]);
+            ++count;
+        }
     }
 }
 
@@ -1725,11 +1811,26 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
         coveredGradP += internalWall[facej]*S;
     }
 
-    // Coupled faces: U and nu across them (all ranks take part)
+    // Coupled faces: U and nu across them, and for the wall point the
+    // fluid cell's p, centre and wall gradient g_F (all ranks take part)
     vectorField Unbr;
     scalarField nuNbr;
     syncTools::swapBoundaryCellList(mesh_, U.primitiveField(), Unbr);
     syncTools::swapBoundaryCellList(mesh_, nu.primitiveField(), nuNbr);
+    scalarField pNbr;
+    pointField Cnbr;
+    syncTools::swapBoundaryCellList(mesh_, p.primitiveField(), pNbr);
+    syncTools::swapBoundaryCellList(mesh_, Cc, Cnbr);
+    vectorField gradpNbr(mesh_.nBoundaryFaces(), Zero);
+    for (const label facei : boundaryFaces_)
+    {
+        const label o = mesh_.faceOwner()[facei];
+        if (!covered(o))
+        {
+            gradpNbr[facei - nInternal] = gradp[wallCell[o]];
+        }
+    }
+    syncTools::swapBoundaryFaceList(mesh_, gradpNbr);
     forAll(boundaryFaces_, j)
     {
         const label facei = boundaryFaces_[j];
@@ -1743,10 +1844,18 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
         const label i = facei - pbm[patchi].start();
         const label b = facei - nInternal;
         const vector& S = Sf[facei];
+        // pressure at the wall point, else at the face: as on an internal
+        // face, from the fluid cell across
+        const scalar lambda = wallFraction_[internalFaces_.size() + j];
+        const scalar pw =
+            lambda < 0
+          ? boundaryWall[j]
+          : pNbr[b]
+          + ((Cc[o] + lambda*(Cnbr[b] - Cc[o]) - Cnbr[b]) & gradpNbr[b]);
         t[io] +=
             rhoFluid
            *(
-              - pw1*boundaryWall[j]*S
+              - pw1*pw*S
               + nuNbr[b]*mag(S)*delta.boundaryField()[patchi][i]
                *(Unbr[b] - U[o])
             );

@@ -1541,22 +1541,27 @@ void Foam::fv::immersedForcing::constrain
     unconstrained_.keep(eqn, boundary_.coveredCells());
 
     // u_s in the covered cells, the ghost cells' value extrapolated through
-    // the wall (immersedBoundary::ghostVelocity)
+    // the wall (immersedBoundary::ghostVelocity). (coveredVelocity_ is in
+    // the pairs' order: with cut cells the covered cells of the projection
+    // are a part of them.) Their processor faces first get what setValues
+    // gives their internal faces, on both sides (constrainCoupled): else
+    // the fluid cell across stays coupled to the covered cell's solution,
+    // which the pressure gradient moves off the value
     const labelUList& cells = boundary_.coveredCells();
-    if (ghostWall_)
-    {
-        eqn.setValues(cells, boundary_.ghostVelocity(eqn.psi())());
-    }
-    else
-    {
-        // (coveredVelocity_ is in the pairs' order: with cut cells the
-        // covered cells of the projection are a part of them)
-        const vectorField us
+    const vectorField values
+    (
+        ghostWall_
+      ? boundary_.ghostVelocity(eqn.psi())
+      : tmp<vectorField>
         (
-            UIndirectList<vector>(coveredVelocity_, coveredPairIndex_)
-        );
-        eqn.setValues(cells, us);
-    }
+            new vectorField
+            (
+                UIndirectList<vector>(coveredVelocity_, coveredPairIndex_)
+            )
+        )
+    );
+    boundary_.constrainCoupled(eqn, values);
+    eqn.setValues(cells, values);
 
     // The covered rows are now decoupled (u = u_s); scaling their diagonal
     // and source together keeps u = u_s and makes 1/A small there, so the
