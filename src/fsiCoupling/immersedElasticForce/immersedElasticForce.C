@@ -248,38 +248,36 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::fromNodes
 }
 
 
-void Foam::fv::immersedElasticForce::updateStencils()
+bool Foam::fv::immersedElasticForce::keepsStencil(const label i) const
 {
-    const tmp<pointField> tx(transferPoints());
-    const pointField& x = tx();
+    // a tether does not move: its stencil is the first one
+    return stencilsBuilt_ && i < solidPtr_->nPoints() && tethered_[i];
+}
+
+
+Foam::labelList Foam::fv::immersedElasticForce::locate(const pointField& x)
+{
     const label n = x.size();
     const label nNodes = solidPtr_->nPoints();
-    // a tether (a node held in all components that holds the fluid), a
-    // held node that does not (no stencil); centroids are free
-    auto tether = [&](const label i) { return i < nNodes && tethered_[i]; };
-    auto held = [&](const label i)
-    {
-        return i < nNodes && cmptSum(free_[i]) == 0 && !tethered_[i];
-    };
 
     // the local cell of every free transfer point, then the lowest rank
     // holding it. First a walk from the point's last cell, which finds
     // nearly every point (it moves less than a cell per step); then the
     // octree on every rank for the points no rank found so (in parallel,
     // a point held by another rank would otherwise be looked for in this
-    // rank's octree at every step)
+    // rank's octree at every step). A held node that is not a tether gets
+    // no stencil (rank -1); centroids are free
     labelList rank(n, Pstream::nProcs());
     boolList unfound(n, false);
     forAll(x, i)
     {
-        if (tether(i) && stencilsBuilt_)
+        if (keepsStencil(i))
         {
-            // a tether does not move: its stencil is the first one
             rank[i] = tetherRank_[i];
             continue;
         }
         nodeCell_[i] = -1;
-        if (held(i))
+        if (i < nNodes && cmptSum(free_[i]) == 0 && !tethered_[i])
         {
             rank[i] = -1;
             continue;
@@ -316,12 +314,23 @@ void Foam::fv::immersedElasticForce::updateStencils()
     }
     Pstream::listCombineGather(rank, minEqOp<label>());
     Pstream::listCombineScatter(rank);
+    return rank;
+}
 
+
+void Foam::fv::immersedElasticForce::placeOutside
+(
+    const pointField& x,
+    labelList& rank
+)
+{
     // a free node outside the fluid (beside the faceted root wall, which
     // cuts inside the true wall where it is concave): its nearest cell's
     // stencil, the weights clamped to that cell's nearest tet, so that it
     // follows the fluid beside it (and the wall contact pushes it back);
     // the rank with the nearest cell centre takes it
+    const label n = x.size();
+    const label nNodes = solidPtr_->nPoints();
     outside_ = 0;
     scalarField nearest(n, GREAT);
     labelList nearestCell(n, -1);
@@ -342,88 +351,105 @@ void Foam::fv::immersedElasticForce::updateStencils()
             }
         }
     }
-    if (returnReduce(min(nearest) < GREAT, orOp<bool>()))
+    if (!returnReduce(min(nearest) < GREAT, orOp<bool>()))
     {
-        scalarField best(nearest);
-        Pstream::listCombineGather(best, minEqOp<scalar>());
-        Pstream::listCombineScatter(best);
-        labelList owner(n, Pstream::nProcs());
-        forAll(x, i)
+        return;
+    }
+    scalarField best(nearest);
+    Pstream::listCombineGather(best, minEqOp<scalar>());
+    Pstream::listCombineScatter(best);
+    labelList owner(n, Pstream::nProcs());
+    forAll(x, i)
+    {
+        if (nearestCell[i] >= 0 && nearest[i] <= best[i])
         {
-            if (nearestCell[i] >= 0 && nearest[i] <= best[i])
+            owner[i] = Pstream::myProcNo();
+        }
+    }
+    Pstream::listCombineGather(owner, minEqOp<label>());
+    Pstream::listCombineScatter(owner);
+    forAll(x, i)
+    {
+        if (rank[i] == Pstream::nProcs())
+        {
+            rank[i] = owner[i];
+            if (owner[i] == Pstream::myProcNo())
             {
-                owner[i] = Pstream::myProcNo();
+                nodeCell_[i] = nearestCell[i];
+                hint_[i] = nearestCell[i];
             }
         }
-        Pstream::listCombineGather(owner, minEqOp<label>());
-        Pstream::listCombineScatter(owner);
-        forAll(x, i)
+    }
+}
+
+
+void Foam::fv::immersedElasticForce::setWeights
+(
+    const label i,
+    const point& x
+)
+{
+    const label celli = nodeCell_[i];
+    label tetFacei = -1;
+    label tetPti = -1;
+    mesh_.findTetFacePt(celli, x, tetFacei, tetPti);
+    if (tetFacei < 0)
+    {
+        // outside the cell's tets (outside the fluid, or by round-off on
+        // the cell's boundary): the nearest tet, the weights clamped
+        scalar best = GREAT;
+        for (const label facei : mesh_.cells()[celli])
         {
-            if (rank[i] == Pstream::nProcs())
+            const face& f = mesh_.faces()[facei];
+            for (label tetPt = 1; tetPt < f.size() - 1; ++tetPt)
             {
-                rank[i] = owner[i];
-                if (owner[i] == Pstream::myProcNo())
+                const tetIndices t(celli, facei, tetPt);
+                const scalar d =
+                    mag(t.tet(mesh_).nearestPoint(x).rawPoint() - x);
+                if (d < best)
                 {
-                    nodeCell_[i] = nearestCell[i];
-                    hint_[i] = nearestCell[i];
+                    best = d;
+                    tetFacei = facei;
+                    tetPti = tetPt;
                 }
             }
         }
     }
+    const tetIndices tetIs(celli, tetFacei, tetPti);
+    barycentric b = tetIs.tet(mesh_).pointToBarycentric(x);
+    scalar sum = 0;
+    for (direction k = 0; k < 4; ++k)
+    {
+        b[k] = max(b[k], scalar(0));
+        sum += b[k];
+    }
+    const triFace tri(tetIs.faceTriIs(mesh_));
+    for (direction k = 0; k < 4; ++k)
+    {
+        nodeWeights_[i][k] = b[k]/max(sum, VSMALL);
+    }
+    for (direction k = 0; k < 3; ++k)
+    {
+        nodePoints_[i][k] = tri[k];
+    }
+}
 
+
+void Foam::fv::immersedElasticForce::updateStencils()
+{
+    const tmp<pointField> tx(transferPoints());
+    const pointField& x = tx();
+    labelList rank(locate(x));
+    placeOutside(x, rank);
     forAll(x, i)
     {
         if (rank[i] != Pstream::myProcNo())
         {
             nodeCell_[i] = -1;
-            continue;
         }
-        if (tether(i) && stencilsBuilt_)
+        else if (!keepsStencil(i))
         {
-            continue;
-        }
-        const label celli = nodeCell_[i];
-        label tetFacei = -1;
-        label tetPti = -1;
-        mesh_.findTetFacePt(celli, x[i], tetFacei, tetPti);
-        if (tetFacei < 0)
-        {
-            // outside the cell's tets (outside the fluid, or by round-off
-            // on the cell's boundary): the nearest tet, the weights clamped
-            scalar best = GREAT;
-            for (const label facei : mesh_.cells()[celli])
-            {
-                const face& f = mesh_.faces()[facei];
-                for (label tetPt = 1; tetPt < f.size() - 1; ++tetPt)
-                {
-                    const tetIndices t(celli, facei, tetPt);
-                    const scalar d =
-                        mag(t.tet(mesh_).nearestPoint(x[i]).rawPoint() - x[i]);
-                    if (d < best)
-                    {
-                        best = d;
-                        tetFacei = facei;
-                        tetPti = tetPt;
-                    }
-                }
-            }
-        }
-        const tetIndices tetIs(celli, tetFacei, tetPti);
-        barycentric b = tetIs.tet(mesh_).pointToBarycentric(x[i]);
-        scalar sum = 0;
-        for (direction k = 0; k < 4; ++k)
-        {
-            b[k] = max(b[k], scalar(0));
-            sum += b[k];
-        }
-        const triFace tri(tetIs.faceTriIs(mesh_));
-        for (direction k = 0; k < 4; ++k)
-        {
-            nodeWeights_[i][k] = b[k]/max(sum, VSMALL);
-        }
-        for (direction k = 0; k < 3; ++k)
-        {
-            nodePoints_[i][k] = tri[k];
+            setWeights(i, x[i]);
         }
     }
     if (!stencilsBuilt_)

@@ -750,11 +750,8 @@ bool Foam::functionObjects::valveMetrics::execute()
 }
 
 
-bool Foam::functionObjects::valveMetrics::write()
+void Foam::functionObjects::valveMetrics::prepare(const immersedSolid& s)
 {
-    const immersedSolid& s = *solid_;
-    const scalar t = time_.value();
-
     if (!solidReady_)
     {
         setSolid(s);
@@ -767,6 +764,7 @@ bool Foam::functionObjects::valveMetrics::write()
             wall_.reset(new triSurface());  // (not the master)
         }
     }
+    const scalar t = time_.value();
     if
     (
         !warnedTime_
@@ -780,14 +778,22 @@ bool Foam::functionObjects::valveMetrics::write()
             << "that time" << endl;
         warnedTime_ = true;
     }
+}
 
-    // fluid: flow rates, pressures (summed over the ranks)
+
+void Foam::functionObjects::valveMetrics::flowMetrics
+(
+    scalar& Qin,
+    scalar& Qout,
+    scalar& dp
+) const
+{
+    // flow rates and the area-weighted mean pressures of the inlet and
+    // the outlet, summed over the ranks
     const surfaceScalarField& phi = lookupObject<surfaceScalarField>(phiName_);
     const volScalarField& p = lookupObject<volScalarField>(pName_);
-    const volVectorField& U = lookupObject<volVectorField>(UName_);
-
-    scalar Qin = -sum(phi.boundaryField()[inletPatch_]);
-    scalar Qout = sum(phi.boundaryField()[outletPatch_]);
+    Qin = -sum(phi.boundaryField()[inletPatch_]);
+    Qout = sum(phi.boundaryField()[outletPatch_]);
     const scalarField& magSfIn = mesh_.magSf().boundaryField()[inletPatch_];
     const scalarField& magSfOut = mesh_.magSf().boundaryField()[outletPatch_];
     scalar pAin = sum(p.boundaryField()[inletPatch_]*magSfIn);
@@ -800,11 +806,18 @@ bool Foam::functionObjects::valveMetrics::write()
     reduce(pAout, sumOp<scalar>());
     reduce(Ain, sumOp<scalar>());
     reduce(Aout, sumOp<scalar>());
-    const scalar dp = rho_*(pAin/Ain - pAout/Aout)/paPerMmHg;
-    const scalar leak = Qout < 0 ? -Qout : 0;
+    dp = rho_*(pAin/Ain - pAout/Aout)/paPerMmHg;
+}
 
-    // peak axial velocity between the solid's lowest and highest point
-    const pointField& x = s.points();
+
+Foam::scalar Foam::functionObjects::valveMetrics::peakAxialVelocity
+(
+    const pointField& x
+) const
+{
+    // the largest axial velocity of the disc's cells between the solid's
+    // lowest and highest point (all ranks; -GREAT if none)
+    const volVectorField& U = lookupObject<volVectorField>(UName_);
     scalar sMin = GREAT;
     scalar sMax = -GREAT;
     for (const point& xi : x)
@@ -822,6 +835,23 @@ bool Foam::functionObjects::valveMetrics::write()
         }
     }
     reduce(vPeak, maxOp<scalar>());
+    return vPeak;
+}
+
+
+bool Foam::functionObjects::valveMetrics::write()
+{
+    const immersedSolid& s = *solid_;
+    prepare(s);
+
+    // fluid (all ranks)
+    scalar Qin = 0;
+    scalar Qout = 0;
+    scalar dp = 0;
+    flowMetrics(Qin, Qout, dp);
+    const scalar leak = Qout < 0 ? -Qout : 0;
+    const pointField& x = s.points();
+    const scalar vPeak = peakAxialVelocity(x);
     const bool haveRe = vPeak > -GREAT;
     const scalar Re = haveRe ? 2*rho_*vPeak*radius_/mu_ : 0;
 
