@@ -635,11 +635,44 @@ Foam::scalar Foam::immersedPairs::cellSeparation
 }
 
 
-void Foam::immersedPairs::findCoveredCells
-(
-    const pointField& x,
-    const List<tetLabels>& elements
-)
+namespace
+{
+    // The largest of an element's nodes' values m
+    inline Foam::scalar largest
+    (
+        const Foam::scalarField& m,
+        const Foam::FixedList<Foam::label, 4>& t
+    )
+    {
+        using Foam::max;
+        return max(max(m[t[0]], m[t[1]]), max(m[t[2]], m[t[3]]));
+    }
+
+    // A kept gap K (pair apart while the element moves less than K) after
+    // a motion me: K - me, or -1 (test it) when the motion may have
+    // closed it
+    inline Foam::scalar rebased(const Foam::scalar K, const Foam::scalar me)
+    {
+        return K > me ? K - me : Foam::scalar(-1);
+    }
+
+    // An element's bounding box, grown by a relative round-off margin
+    Foam::treeBoundBox elementBox(const Foam::FixedList<Foam::point, 4>& A)
+    {
+        Foam::treeBoundBox bb(A[0], A[0]);
+        for (Foam::label k = 1; k < 4; ++k)
+        {
+            bb.add(A[k]);
+        }
+        const Foam::scalar tol = 1e-9*Foam::mag(bb.span()) + Foam::ROOTVSMALL;
+        bb.min() -= Foam::point::uniform(tol);
+        bb.max() += Foam::point::uniform(tol);
+        return bb;
+    }
+}
+
+
+void Foam::immersedPairs::resetCovered()
 {
     // Reset the slots of the last search's cells only
     if (slot_.size() != mesh_.nCells())
@@ -656,265 +689,221 @@ void Foam::immersedPairs::findCoveredCells
     centreInside_.clear();
     nPairTests_ = 0;
     nPairsSkipped_ = 0;
+}
 
+
+void Foam::immersedPairs::addCovered
+(
+    const label celli,
+    const label e,
+    const tetWeights& w,
+    const bool centreInside
+)
+{
+    slot_[celli] = coveredCells_.size();
+    coveredCells_.append(celli);
+    coveringElement_.append(e);
+    weights_.append(w);
+    centreInside_.append(centreInside);
+}
+
+
+void Foam::immersedPairs::coverCentres
+(
+    const pointField& x,
+    const label e,
+    const tetLabels& t,
+    const scalar me
+)
+{
+    // The cell centres inside element e (paper Eq. 50 with the solid's
+    // shape functions; the lowest element first, as called in order).
+    // Candidates: the cached lists (touching, me: the element's motion
+    // since the last search) or the centre octree. Touching: a pair still
+    // apart by its kept gap has its centre outside (the centre is inside
+    // the cell); so has a pair whose centre was found outside at a
+    // distance d (at least the largest -w_i h_i, h_i the height over face
+    // i) while the element has moved less than d since
+    const point& a = x[t[0]];
+    const point& b = x[t[1]];
+    const point& c = x[t[2]];
+    const point& d = x[t[3]];
     const pointField& C = mesh_.cellCentres();
-    labelList& slot = slot_;
-
     const bool touching = (coverage_ == coverageType::touching);
 
-    // Touching: each node's motion since the last search (the kept gaps
-    // are relative to it) and since the candidate lists were built; an
-    // element's is the largest of its nodes'
-    scalarField moved;
-    scalarField movedSinceLists;
+    labelList found;
+    const scalar* gap = nullptr;
+    scalar* centreGap = nullptr;
     if (touching)
     {
-        const clockValue start(true);
-        updateCandidates(x, elements);
-        if (debug)
-        {
-            Info<< "immersedPairs: candidate lists " << start.elapsed()
-                << " s" << endl;
-        }
-        if (lastX_.size() != x.size())
-        {
-            lastX_ = x;
-        }
-        moved.setSize(x.size());
-        movedSinceLists.setSize(x.size());
-        forAll(x, i)
-        {
-            moved[i] = mag(x[i] - lastX_[i]);
-            movedSinceLists[i] = mag(x[i] - candidateX_[i]);
-        }
+        gap = candidateGap_[e].cdata();
+        centreGap = candidateCentreGap_[e].data();
     }
-    auto largest = [](const scalarField& m, const tetLabels& t)
+    else
     {
-        return max(max(m[t[0]], m[t[1]]), max(m[t[2]], m[t[3]]));
-    };
-    // A kept gap K (pair apart while the element moves less than K) after
-    // a motion me: K - me, or -1 (test it) when the motion may have
-    // closed it
-    auto rebased = [](const scalar K, const scalar me)
+        found = centreTree_->findBox(elementBox({a, b, c, d}));
+    }
+    // heights over the faces opposite each vertex (when needed)
+    FixedList<scalar, 4> h(-1);
+    const labelUList& cand = touching ? candidates_[e] : found;
+    forAll(cand, k)
     {
-        return K > me ? K - me : scalar(-1);
-    };
-
-    // Cell centres inside the elements (paper Eq. 50 with the solid's
-    // shape functions), the lowest element first; candidates: the cached
-    // lists (touching) or the centre octree. Touching: a pair still apart
-    // by its kept gap has its centre outside (the centre is inside the
-    // cell); so has a pair whose centre was found outside at a distance d
-    // (at least the largest -w_i h_i, h_i the height over face i) while
-    // the element has moved less than d since
-    forAll(elements, e)
-    {
-        const tetLabels& t = elements[e];
-        const point& a = x[t[0]];
-        const point& b = x[t[1]];
-        const point& c = x[t[2]];
-        const point& d = x[t[3]];
-
-        labelList found;
-        const scalar* gap = nullptr;
-        scalar* centreGap = nullptr;
-        scalar me = 0;
-        if (!touching)
+        // (the kept gaps first: read in order, the slots are not; the
+        // centre distance not tested is rebased to this search)
+        if (gap && (me < gap[k] || me < centreGap[k]))
         {
-            treeBoundBox bb(a, a);
-            bb.add(b);
-            bb.add(c);
-            bb.add(d);
-            const scalar tol = 1e-9*mag(bb.span()) + ROOTVSMALL;
-            bb.min() -= point::uniform(tol);
-            bb.max() += point::uniform(tol);
-            found = centreTree_->findBox(bb);
+            ++nPairsSkipped_;
+            centreGap[k] = rebased(centreGap[k], me);
+            continue;
         }
-        else
+        const label celli = cand[k];
+        if (slot_[celli] >= 0)
         {
-            gap = candidateGap_[e].cdata();
-            centreGap = candidateCentreGap_[e].data();
-            me = largest(moved, t);
-        }
-        // heights over the faces opposite each vertex (when needed)
-        FixedList<scalar, 4> h(-1);
-        const labelUList& cand = touching ? candidates_[e] : found;
-        forAll(cand, k)
-        {
-            // (the kept gaps first: read in order, the slots are not; the
-            // centre distance not tested is rebased to this search)
-            if (gap && (me < gap[k] || me < centreGap[k]))
+            if (centreGap)
             {
-                ++nPairsSkipped_;
                 centreGap[k] = rebased(centreGap[k], me);
-                continue;
             }
-            const label celli = cand[k];
-            if (slot[celli] >= 0)
+            continue;
+        }
+        ++nPairTests_;
+        const tetWeights w(barycentric(C[celli], a, b, c, d));
+        const bool in = insideTet(w);
+        if (centreGap && in)
+        {
+            centreGap[k] = -1;
+        }
+        if (centreGap && !in)
+        {
+            if (h[0] < 0)
             {
-                if (centreGap)
-                {
-                    centreGap[k] = rebased(centreGap[k], me);
-                }
-                continue;
+                const scalar V6 = mag(((b - a) ^ (c - a)) & (d - a));
+                h[0] = V6/max(mag((c - b) ^ (d - b)), VSMALL);
+                h[1] = V6/max(mag((c - a) ^ (d - a)), VSMALL);
+                h[2] = V6/max(mag((b - a) ^ (d - a)), VSMALL);
+                h[3] = V6/max(mag((b - a) ^ (c - a)), VSMALL);
             }
-            ++nPairTests_;
-            const tetWeights w(barycentric(C[celli], a, b, c, d));
-            const bool in = insideTet(w);
-            if (centreGap && in)
+            scalar dist = 0;
+            for (label i = 0; i < 4; ++i)
             {
-                centreGap[k] = -1;
+                dist = max(dist, -w[i]*h[i]);
             }
-            if (centreGap && !in)
-            {
-                if (h[0] < 0)
-                {
-                    const scalar V6 = mag(((b - a) ^ (c - a)) & (d - a));
-                    h[0] = V6/max(mag((c - b) ^ (d - b)), VSMALL);
-                    h[1] = V6/max(mag((c - a) ^ (d - a)), VSMALL);
-                    h[2] = V6/max(mag((b - a) ^ (d - a)), VSMALL);
-                    h[3] = V6/max(mag((b - a) ^ (c - a)), VSMALL);
-                }
-                scalar dist = 0;
-                for (label i = 0; i < 4; ++i)
-                {
-                    dist = max(dist, -w[i]*h[i]);
-                }
-                // from this search, with a round-off margin
-                centreGap[k] = (1 - 1e-9)*dist;
-            }
-            if (in)
-            {
-                slot[celli] = coveredCells_.size();
-                coveredCells_.append(celli);
-                coveringElement_.append(e);
-                weights_.append(w);
-                centreInside_.append(true);
-            }
+            // from this search, with a round-off margin
+            centreGap[k] = (1 - 1e-9)*dist;
+        }
+        if (in)
+        {
+            addCovered(celli, e, w, true);
         }
     }
+}
 
-    if (!touching)
-    {
-        nearElements_.setSize(0);
-        return;
-    }
-    nearPairs_.clear();
 
-    const clockValue touchStart(true);
-    // Cells touched by the elements: a tet of the cell's CELL_TETS
+void Foam::immersedPairs::coverTouched
+(
+    const pointField& x,
+    const label e,
+    const tetLabels& t,
+    const scalar me,
+    const scalar meLists
+)
+{
+    // The cells element e touches: a tet of the cell's CELL_TETS
     // decomposition (the one of the inside test) and the element intersect
     // (closed sets: touching counts), by separating axes (cellSeparation;
     // the gap found is kept). Candidates: the cells whose bounding box
     // overlaps the element's. Weights: the barycentric coordinates of the
-    // cell centre clamped to the element.
-    forAll(elements, e)
+    // cell centre clamped to the element. me, meLists: the element's
+    // motion since the last search and since the lists were built
+    const pointField& C = mesh_.cellCentres();
+    const FixedList<point, 4> A({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
+    const treeBoundBox bb(elementBox(A));
+
+    // The pairs kept for the next searches are written back in place: a
+    // pair whose gap exceeds margin_ cannot touch before the lists are
+    // rebuilt (a node moving by more than margin_ rebuilds them) and is
+    // dropped
+    labelList& cand = candidates_[e];
+    scalarList& gap = candidateGap_[e];
+    scalarList& centreGap = candidateCentreGap_[e];
+    label nKept = 0;
+    // (written only where something changes: most pairs stay as they
+    // are, and the write-back of unchanged lists costs memory traffic)
+    auto keep = [&](const label k, const scalar g)
     {
-        const tetLabels& t = elements[e];
-        const FixedList<point, 4> A({x[t[0]], x[t[1]], x[t[2]], x[t[3]]});
-
-        treeBoundBox bb(A[0], A[0]);
-        for (label k = 1; k < 4; ++k)
+        if (nKept != k)
         {
-            bb.add(A[k]);
+            cand[nKept] = cand[k];
+            centreGap[nKept] = centreGap[k];
+            gap[nKept] = g;
         }
-        const scalar tol = 1e-9*mag(bb.span()) + ROOTVSMALL;
-        bb.min() -= point::uniform(tol);
-        bb.max() += point::uniform(tol);
-
-        // The pairs kept for the next searches are written back in place:
-        // a pair whose gap exceeds margin_ cannot touch before the lists
-        // are rebuilt (a node moving by more than margin_ rebuilds them)
-        // and is dropped
-        labelList& cand = candidates_[e];
-        scalarList& gap = candidateGap_[e];
-        scalarList& centreGap = candidateCentreGap_[e];
-        const scalar me = largest(moved, t);
-        const scalar meLists = largest(movedSinceLists, t);
-        label nKept = 0;
-        // (written only where something changes: most pairs stay as they
-        // are, and the write-back of unchanged lists costs memory traffic)
-        auto keep = [&](const label k, const scalar g)
+        else if (gap[k] != g)
         {
-            if (nKept != k)
-            {
-                cand[nKept] = cand[k];
-                centreGap[nKept] = centreGap[k];
-                gap[nKept] = g;
-            }
-            else if (gap[k] != g)
-            {
-                gap[k] = g;
-            }
-            ++nKept;
-        };
-        forAll(cand, k)
+            gap[k] = g;
+        }
+        ++nKept;
+    };
+    forAll(cand, k)
+    {
+        if (me < gap[k])
         {
-            if (me < gap[k])
-            {
-                ++nPairsSkipped_;
-                keep(k, gap[k] - me);
-                continue;
-            }
-            const label celli = cand[k];
-            if (slot[celli] >= 0)
-            {
-                // covered already: not tested, may touch
-                nearPairs_.append(labelPair(slot[celli], e));
-                keep(k, -1);
-                continue;
-            }
-            ++nPairTests_;
-            const scalar g = cellSeparation(A, bb, celli);
-            if (g >= 0)
-            {
-                // apart: kept from this search, with a relative margin for
-                // the round-off; dropped when the element cannot reach
-                // the cell before the lists are rebuilt (every node then
-                // stays within margin_ of candidateX_, so the element
-                // moves less than margin_ + meLists from here)
-                const scalar kept = (1 - 1e-9)*g;
-                if (kept - meLists <= margin_)
-                {
-                    keep(k, kept);
-                }
-                continue;
-            }
+            ++nPairsSkipped_;
+            keep(k, gap[k] - me);
+            continue;
+        }
+        const label celli = cand[k];
+        if (slot_[celli] >= 0)
+        {
+            // covered already: not tested, may touch
+            nearPairs_.append(labelPair(slot_[celli], e));
             keep(k, -1);
-
-            tetWeights w(barycentric(C[celli], A[0], A[1], A[2], A[3]));
-            scalar sum = 0;
-            for (scalar& wi : w)
-            {
-                wi = max(wi, scalar(0));
-                sum += wi;
-            }
-            for (scalar& wi : w)
-            {
-                wi /= sum;
-            }
-            nearPairs_.append(labelPair(coveredCells_.size(), e));
-            slot[celli] = coveredCells_.size();
-            coveredCells_.append(celli);
-            coveringElement_.append(e);
-            weights_.append(w);
-            centreInside_.append(false);
+            continue;
         }
-        if (nKept < cand.size())
+        ++nPairTests_;
+        const scalar g = cellSeparation(A, bb, celli);
+        if (g >= 0)
         {
-            cand.setSize(nKept);
-            gap.setSize(nKept);
-            centreGap.setSize(nKept);
+            // apart: kept from this search, with a relative margin for the
+            // round-off; dropped when the element cannot reach the cell
+            // before the lists are rebuilt (every node then stays within
+            // margin_ of candidateX_, so the element moves less than
+            // margin_ + meLists from here)
+            const scalar kept = (1 - 1e-9)*g;
+            if (kept - meLists <= margin_)
+            {
+                keep(k, kept);
+            }
+            continue;
         }
-    }
+        keep(k, -1);
 
-    const double touchTime = touchStart.elapsed();
-    // (the kept gaps are now relative to these positions)
-    lastX_ = x;
-    const clockValue nearStart(true);
+        tetWeights w(barycentric(C[celli], A[0], A[1], A[2], A[3]));
+        scalar sum = 0;
+        for (scalar& wi : w)
+        {
+            wi = max(wi, scalar(0));
+            sum += wi;
+        }
+        for (scalar& wi : w)
+        {
+            wi /= sum;
+        }
+        nearPairs_.append(labelPair(coveredCells_.size(), e));
+        addCovered(celli, e, w, false);
+    }
+    if (nKept < cand.size())
+    {
+        cand.setSize(nKept);
+        gap.setSize(nKept);
+        centreGap.setSize(nKept);
+    }
+}
+
+
+void Foam::immersedPairs::groupNearElements()
+{
     // The elements that may touch each covered cell, by cell (the pairs
-    // of a cell are those not skipped above: the kept gap is a lower
-    // bound of the distance, so a skipped pair is apart)
+    // of a cell are those not skipped: the kept gap is a lower bound of
+    // the distance, so a skipped pair is apart)
     labelList nNear(coveredCells_.size(), 0);
     for (const labelPair& p : nearPairs_)
     {
@@ -928,6 +917,69 @@ void Foam::immersedPairs::findCoveredCells
     {
         near[offsets[p.first()] + nNear[p.first()]++] = p.second();
     }
+}
+
+
+void Foam::immersedPairs::findCoveredCells
+(
+    const pointField& x,
+    const List<tetLabels>& elements
+)
+{
+    resetCovered();
+    if (coverage_ != coverageType::touching)
+    {
+        forAll(elements, e)
+        {
+            coverCentres(x, e, elements[e], 0);
+        }
+        nearElements_.setSize(0);
+        return;
+    }
+
+    // Touching: each node's motion since the last search (the kept gaps
+    // are relative to it) and since the candidate lists were built; an
+    // element's is the largest of its nodes'
+    const clockValue start(true);
+    updateCandidates(x, elements);
+    if (debug)
+    {
+        Info<< "immersedPairs: candidate lists " << start.elapsed()
+            << " s" << endl;
+    }
+    if (lastX_.size() != x.size())
+    {
+        lastX_ = x;
+    }
+    scalarField moved(x.size());
+    scalarField movedSinceLists(x.size());
+    forAll(x, i)
+    {
+        moved[i] = mag(x[i] - lastX_[i]);
+        movedSinceLists[i] = mag(x[i] - candidateX_[i]);
+    }
+
+    forAll(elements, e)
+    {
+        coverCentres(x, e, elements[e], largest(moved, elements[e]));
+    }
+
+    nearPairs_.clear();
+    const clockValue touchStart(true);
+    forAll(elements, e)
+    {
+        const tetLabels& t = elements[e];
+        coverTouched
+        (
+            x, e, t, largest(moved, t), largest(movedSinceLists, t)
+        );
+    }
+    const double touchTime = touchStart.elapsed();
+
+    // (the kept gaps are now relative to these positions)
+    lastX_ = x;
+    const clockValue nearStart(true);
+    groupNearElements();
     if (debug)
     {
         Info<< "immersedPairs: elements that may touch the covered cells "
