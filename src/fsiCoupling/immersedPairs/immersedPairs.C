@@ -225,19 +225,11 @@ Foam::immersedPairs::tetWeights Foam::immersedPairs::barycentric
 }
 
 
-void Foam::immersedPairs::findNodeCells(const pointField& x)
+Foam::labelList Foam::immersedPairs::walkNodes(const pointField& x)
 {
-    const label n = x.size();
-    if (nodeCell_.size() != n)
-    {
-        nodeCell_ = labelList(n, -1);
-    }
-    nSteps_ = 0;
-    nWalks_ = 0;
-    nFallback_ = 0;
-    nLeft_ = 0;
-
-    labelList cells(n, -1);
+    // each node's cell of this rank: a walk from its last cell, the mesh
+    // search where the walk fails (-1: none here)
+    labelList cells(x.size(), -1);
     forAll(x, i)
     {
         label c = -1;
@@ -260,9 +252,15 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
         }
         cells[i] = c;
     }
+    return cells;
+}
 
+
+Foam::labelList Foam::immersedPairs::ownNodes(labelList& cells) const
+{
     // Each node to one rank: the lowest of those whose cells contain it
-    labelList owner(n, labelMax);
+    // (labelMax: none); the other ranks drop their cell of it
+    labelList owner(cells.size(), labelMax);
     forAll(cells, i)
     {
         if (cells[i] >= 0)
@@ -282,7 +280,17 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
             }
         }
     }
+    return owner;
+}
 
+
+void Foam::immersedPairs::placeOnBoundary
+(
+    const pointField& x,
+    labelList& owner,
+    labelList& cells
+)
+{
     // Nodes on the fluid domain's boundary (a leaflet's attachment on the
     // root wall) can lie just outside the faceted boundary of the fluid mesh
     // (a wall facet's chord, a solid face's edge through the wall): within
@@ -293,71 +301,81 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
     // node is in a cell.)
     nOnBoundary_ = 0;
     maxOutside_ = 0;
-    if (owner.found(labelMax))
+    if (!owner.found(labelMax))
     {
-        const indexedOctree<treeDataFace>& bTree = search_.boundaryTree();
-        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-        scalarField dist(n, GREAT);
-        labelList nearCell(n, -1);
-        forAll(owner, i)
+        return;
+    }
+    const label n = x.size();
+    const indexedOctree<treeDataFace>& bTree = search_.boundaryTree();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    scalarField dist(n, GREAT);
+    labelList nearCell(n, -1);
+    forAll(owner, i)
+    {
+        if (owner[i] != labelMax)
         {
-            if (owner[i] != labelMax)
-            {
-                continue;
-            }
-            const pointIndexHit h =
-                bTree.findNearest(x[i], sqr(maxBoundaryDistance_));
-            if (!h.hit())
-            {
-                continue;
-            }
-            const label facei = bTree.shapes().faceLabels()[h.index()];
-            if (pbm[pbm.whichPatch(facei)].coupled())
-            {
-                continue;
-            }
-            const label celli = mesh_.faceOwner()[facei];
-            const scalar d = mag(h.hitPoint() - x[i]);
-            if (d <= boundaryTolerance_*cbrt(mesh_.cellVolumes()[celli]))
-            {
-                dist[i] = d;
-                nearCell[i] = celli;
-            }
+            continue;
         }
-        scalarField minDist(dist);
-        if (Pstream::parRun())
+        const pointIndexHit h =
+            bTree.findNearest(x[i], sqr(maxBoundaryDistance_));
+        if (!h.hit())
         {
-            Pstream::listCombineGather(minDist, minEqOp<scalar>());
-            Pstream::listCombineScatter(minDist);
+            continue;
         }
-        labelList nearOwner(n, labelMax);
-        forAll(dist, i)
+        const label facei = bTree.shapes().faceLabels()[h.index()];
+        if (pbm[pbm.whichPatch(facei)].coupled())
         {
-            if (nearCell[i] >= 0 && dist[i] == minDist[i])
+            continue;
+        }
+        const label celli = mesh_.faceOwner()[facei];
+        const scalar d = mag(h.hitPoint() - x[i]);
+        if (d <= boundaryTolerance_*cbrt(mesh_.cellVolumes()[celli]))
+        {
+            dist[i] = d;
+            nearCell[i] = celli;
+        }
+    }
+    scalarField minDist(dist);
+    if (Pstream::parRun())
+    {
+        Pstream::listCombineGather(minDist, minEqOp<scalar>());
+        Pstream::listCombineScatter(minDist);
+    }
+    labelList nearOwner(n, labelMax);
+    forAll(dist, i)
+    {
+        if (nearCell[i] >= 0 && dist[i] == minDist[i])
+        {
+            nearOwner[i] = Pstream::myProcNo();
+        }
+    }
+    if (Pstream::parRun())
+    {
+        Pstream::listCombineGather(nearOwner, minEqOp<label>());
+        Pstream::listCombineScatter(nearOwner);
+    }
+    forAll(owner, i)
+    {
+        if (owner[i] == labelMax && nearOwner[i] != labelMax)
+        {
+            owner[i] = nearOwner[i];
+            ++nOnBoundary_;
+            maxOutside_ = max(maxOutside_, minDist[i]);
+            if (nearOwner[i] == Pstream::myProcNo())
             {
-                nearOwner[i] = Pstream::myProcNo();
-            }
-        }
-        if (Pstream::parRun())
-        {
-            Pstream::listCombineGather(nearOwner, minEqOp<label>());
-            Pstream::listCombineScatter(nearOwner);
-        }
-        forAll(owner, i)
-        {
-            if (owner[i] == labelMax && nearOwner[i] != labelMax)
-            {
-                owner[i] = nearOwner[i];
-                ++nOnBoundary_;
-                maxOutside_ = max(maxOutside_, minDist[i]);
-                if (nearOwner[i] == Pstream::myProcNo())
-                {
-                    cells[i] = nearCell[i];
-                }
+                cells[i] = nearCell[i];
             }
         }
     }
+}
 
+
+void Foam::immersedPairs::checkImmersed
+(
+    const pointField& x,
+    const labelUList& owner
+) const
+{
     label nMissing = 0;
     label firstMissing = -1;
     forAll(owner, i)
@@ -374,8 +392,8 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
     if (nMissing)
     {
         FatalErrorInFunction
-            << nMissing << " of " << n << " solid nodes lie outside the fluid"
-            << " domain (in no fluid cell); the first is node "
+            << nMissing << " of " << x.size() << " solid nodes lie outside"
+            << " the fluid domain (in no fluid cell); the first is node "
             << firstMissing << " at " << x[firstMissing] << nl
             << "    The solid must stay immersed in the fluid mesh"
             << " (bounding box " << boundBox(mesh_.points(), true) << "),"
@@ -386,7 +404,24 @@ void Foam::immersedPairs::findNodeCells(const pointField& x)
             << " around it"
             << exit(FatalError);
     }
+}
 
+
+void Foam::immersedPairs::findNodeCells(const pointField& x)
+{
+    if (nodeCell_.size() != x.size())
+    {
+        nodeCell_ = labelList(x.size(), -1);
+    }
+    nSteps_ = 0;
+    nWalks_ = 0;
+    nFallback_ = 0;
+    nLeft_ = 0;
+
+    labelList cells(walkNodes(x));
+    labelList owner(ownNodes(cells));
+    placeOnBoundary(x, owner, cells);
+    checkImmersed(x, owner);
     nodeCell_.transfer(cells);
 }
 
@@ -417,6 +452,107 @@ Foam::immersedPairs::cellBoxTree()
 }
 
 
+void Foam::immersedPairs::setCellBoxes()
+{
+    // Cell boxes and the cells with a coupled face, once
+    if (cellBb_.size() == mesh_.nCells())
+    {
+        return;
+    }
+    const cellList& cells = mesh_.cells();
+    const faceList& faces = mesh_.faces();
+    const pointField& P = mesh_.points();
+    cellBb_.setSize(mesh_.nCells());
+    nearCoupled_.setSize(mesh_.nCells());
+    nearCoupled_ = false;
+    forAll(cells, celli)
+    {
+        treeBoundBox bb(P[faces[cells[celli][0]][0]], P[faces[cells[celli][0]][0]]);
+        for (const label facei : cells[celli])
+        {
+            for (const label pointi : faces[facei])
+            {
+                bb.add(P[pointi]);
+            }
+            if (!mesh_.isInternalFace(facei))
+            {
+                const label patchi = mesh_.boundaryMesh().whichPatch(facei);
+                if (mesh_.boundaryMesh()[patchi].coupled())
+                {
+                    nearCoupled_[celli] = true;
+                }
+            }
+        }
+        cellBb_[celli] = bb;
+    }
+    visitedBy_ = labelList(mesh_.nCells(), -1);
+}
+
+
+Foam::labelList Foam::immersedPairs::cellsOverlapping
+(
+    const pointField& x,
+    const tetLabels& t,
+    const treeBoundBox& bb
+)
+{
+    // The cells whose box overlaps bb, by a fill over face neighbours
+    // from the cells of the element's nodes: the cells that meet bb (an
+    // open box) are face-connected and contain the nodes' cells, so the
+    // fill reaches every one of them. The octree where a node is not in
+    // this rank's cells or the fill meets a coupled face (the rank's part
+    // of bb may not be connected).
+    const labelListList& cellCells = mesh_.cellCells();
+    bool useTree = false;
+    DynamicList<label>& found = fillCells_;
+    found.clear();
+    if (++stamp_ == labelMax)
+    {
+        visitedBy_ = -1;
+        stamp_ = 0;
+    }
+    const label mark = stamp_;
+    for (label k = 0; k < 4 && !useTree; ++k)
+    {
+        const label c0 = nodeCell_.size() == x.size() ? nodeCell_[t[k]] : -1;
+        if (c0 < 0)
+        {
+            useTree = true;
+        }
+        else if (visitedBy_[c0] != mark)
+        {
+            visitedBy_[c0] = mark;
+            found.append(c0);
+        }
+    }
+    for (label head = 0; head < found.size() && !useTree; ++head)
+    {
+        const label celli = found[head];
+        if (nearCoupled_[celli])
+        {
+            useTree = true;
+            break;
+        }
+        for (const label nb : cellCells[celli])
+        {
+            if (visitedBy_[nb] != mark)
+            {
+                visitedBy_[nb] = mark;
+                if (cellBb_[nb].overlaps(bb))
+                {
+                    found.append(nb);
+                }
+            }
+        }
+    }
+    if (useTree)
+    {
+        return cellBoxTree().findBox(bb);
+    }
+    return labelList(found);
+}
+
+
 void Foam::immersedPairs::updateCandidates
 (
     const pointField& x,
@@ -440,40 +576,7 @@ void Foam::immersedPairs::updateCandidates
         return;
     }
 
-    // Cell boxes and the cells with a coupled face, once
-    if (cellBb_.size() != mesh_.nCells())
-    {
-        const cellList& cells = mesh_.cells();
-        const faceList& faces = mesh_.faces();
-        const pointField& P = mesh_.points();
-        cellBb_.setSize(mesh_.nCells());
-        nearCoupled_.setSize(mesh_.nCells());
-        nearCoupled_ = false;
-        forAll(cells, celli)
-        {
-            treeBoundBox bb(P[faces[cells[celli][0]][0]], P[faces[cells[celli][0]][0]]);
-            for (const label facei : cells[celli])
-            {
-                for (const label pointi : faces[facei])
-                {
-                    bb.add(P[pointi]);
-                }
-                if (!mesh_.isInternalFace(facei))
-                {
-                    const label patchi =
-                        mesh_.boundaryMesh().whichPatch(facei);
-                    if (mesh_.boundaryMesh()[patchi].coupled())
-                    {
-                        nearCoupled_[celli] = true;
-                    }
-                }
-            }
-            cellBb_[celli] = bb;
-        }
-        visitedBy_ = labelList(mesh_.nCells(), -1);
-    }
-    const labelListList& cellCells = mesh_.cellCells();
-
+    setCellBoxes();
     candidates_.setSize(elements.size());
     candidateGap_.setSize(elements.size());
     candidateCentreGap_.setSize(elements.size());
@@ -488,62 +591,7 @@ void Foam::immersedPairs::updateCandidates
         const scalar grow = margin_ + 1e-9*mag(bb.span()) + ROOTVSMALL;
         bb.min() -= point::uniform(grow);
         bb.max() += point::uniform(grow);
-        // The cells whose box overlaps bb, by a fill over face neighbours
-        // from the cells of the element's nodes: the cells that meet bb
-        // (an open box) are face-connected and contain the nodes' cells,
-        // so the fill reaches every one of them. The octree where a node
-        // is not in this rank's cells or the fill meets a coupled face
-        // (the rank's part of bb may not be connected).
-        bool useTree = false;
-        DynamicList<label>& found = fillCells_;
-        found.clear();
-        if (++stamp_ == labelMax)
-        {
-            visitedBy_ = -1;
-            stamp_ = 0;
-        }
-        const label mark = stamp_;
-        for (label k = 0; k < 4 && !useTree; ++k)
-        {
-            const label c0 = nodeCell_.size() == x.size() ? nodeCell_[t[k]] : -1;
-            if (c0 < 0)
-            {
-                useTree = true;
-            }
-            else if (visitedBy_[c0] != mark)
-            {
-                visitedBy_[c0] = mark;
-                found.append(c0);
-            }
-        }
-        for (label head = 0; head < found.size() && !useTree; ++head)
-        {
-            const label celli = found[head];
-            if (nearCoupled_[celli])
-            {
-                useTree = true;
-                break;
-            }
-            for (const label nb : cellCells[celli])
-            {
-                if (visitedBy_[nb] != mark)
-                {
-                    visitedBy_[nb] = mark;
-                    if (cellBb_[nb].overlaps(bb))
-                    {
-                        found.append(nb);
-                    }
-                }
-            }
-        }
-        if (useTree)
-        {
-            candidates_[e] = cellBoxTree().findBox(bb);
-        }
-        else
-        {
-            candidates_[e] = found;
-        }
+        candidates_[e] = cellsOverlapping(x, t, bb);
         candidateGap_[e].setSize(candidates_[e].size());
         candidateGap_[e] = -1;
         candidateCentreGap_[e].setSize(candidates_[e].size());
