@@ -138,7 +138,7 @@ void Foam::functionObjects::valveMetrics::setDiscCells()
 }
 
 
-void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
+void Foam::functionObjects::valveMetrics::setParts(const immersedSolid& s)
 {
     const List<solidTet>& tets = s.elements();
     const label n = s.nPoints();
@@ -182,7 +182,11 @@ void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
         }
         nodePart_[i] = partOfRoot[r];
     }
+}
 
+
+void Foam::functionObjects::valveMetrics::setSurfaces(const immersedSolid& s)
+{
     // the surface on node labels
     List<labelledTri> tris;
     labelList surfacePoints;
@@ -205,7 +209,7 @@ void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
     // each part's surface, compact numbering
     List<DynamicList<labelledTri>> partTris(nParts_);
     List<DynamicList<label>> partPts(nParts_);
-    labelList local(n, -1);
+    labelList local(s.nPoints(), -1);
     for (const labelledTri& t : surfaceTriangles_)
     {
         const label parti = nodePart_[t[0]];
@@ -240,11 +244,18 @@ void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
             )
         );
     }
+}
+
+
+void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
+{
+    setParts(s);
+    setSurfaces(s);
 
     // tributary areas of the reference surface (PenaltyContact: a third
     // of each boundary triangle's area to each of its nodes)
     const pointField& X = s.points0();
-    contactArea_.setSize(n);
+    contactArea_.setSize(s.nPoints());
     contactArea_ = 0;
     for (const labelledTri& t : surfaceTriangles_)
     {
@@ -639,75 +650,70 @@ Foam::functionObjects::valveMetrics::valveMetrics
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-bool Foam::functionObjects::valveMetrics::read(const dictionary& dict)
+void Foam::functionObjects::valveMetrics::checkPositive
+(
+    const dictionary& dict,
+    const word& key,
+    const scalar value
+) const
 {
-    fvMeshFunctionObject::read(dict);
-    writeFile::read(dict);
-
-    UName_ = dict.getOrDefault<word>("U", "U");
-    pName_ = dict.getOrDefault<word>("p", "p");
-    phiName_ = dict.getOrDefault<word>("phi", "phi");
-
-    inletPatch_ = patch(dict, "inletPatch", "inlet");
-    outletPatch_ = patch(dict, "outletPatch", "outlet");
-    wallPatch_ = patch(dict, "wallPatch", "wall");
-
-    auto positive = [&](const word& key, const scalar value)
+    if (!(value > 0))
     {
-        if (!(value > 0))
-        {
-            FatalIOErrorInFunction(dict)
-                << "function object " << name() << " in " << dict.name()
-                << ": entry " << key << ' ' << value << " must be positive"
-                << exit(FatalIOError);
-        }
-    };
+        FatalIOErrorInFunction(dict)
+            << "function object " << name() << " in " << dict.name()
+            << ": entry " << key << ' ' << value << " must be positive"
+            << exit(FatalIOError);
+    }
+}
 
-    rho_ = dict.get<scalar>("rho");
-    positive("rho", rho_);
+
+void Foam::functionObjects::valveMetrics::readViscosity(const dictionary& dict)
+{
     if (dict.found("mu"))
     {
         mu_ = dict.get<scalar>("mu");
-        positive("mu", mu_);
+        checkPositive(dict, "mu", mu_);
+        return;
     }
-    else
+    // rho nu of constant/transportProperties (the solver's, if it has read
+    // it)
+    autoPtr<IOdictionary> own;
+    const IOdictionary* transport =
+        mesh_.findObject<IOdictionary>("transportProperties");
+    if (!transport)
     {
-        // rho nu of constant/transportProperties (the solver's, if it has
-        // read it)
-        autoPtr<IOdictionary> own;
-        const IOdictionary* transport =
-            mesh_.findObject<IOdictionary>("transportProperties");
-        if (!transport)
-        {
-            own.reset
+        own.reset
+        (
+            new IOdictionary
             (
-                new IOdictionary
+                IOobject
                 (
-                    IOobject
-                    (
-                        "transportProperties",
-                        mesh_.time().constant(),
-                        mesh_,
-                        IOobject::MUST_READ,
-                        IOobject::NO_WRITE,
-                        false
-                    )
+                    "transportProperties",
+                    mesh_.time().constant(),
+                    mesh_,
+                    IOobject::MUST_READ,
+                    IOobject::NO_WRITE,
+                    false
                 )
-            );
-            transport = own.get();
-        }
-        if (!transport->found("nu"))
-        {
-            FatalIOErrorInFunction(dict)
-                << "function object " << name() << " in " << dict.name()
-                << ": no entry mu, and no nu in " << transport->objectPath()
-                << ": give the dynamic viscosity as mu [Pa s]"
-                << exit(FatalIOError);
-        }
-        mu_ = rho_*dimensionedScalar("nu", dimViscosity, *transport).value();
-        positive("mu (rho nu)", mu_);
+            )
+        );
+        transport = own.get();
     }
+    if (!transport->found("nu"))
+    {
+        FatalIOErrorInFunction(dict)
+            << "function object " << name() << " in " << dict.name()
+            << ": no entry mu, and no nu in " << transport->objectPath()
+            << ": give the dynamic viscosity as mu [Pa s]"
+            << exit(FatalIOError);
+    }
+    mu_ = rho_*dimensionedScalar("nu", dimViscosity, *transport).value();
+    checkPositive(dict, "mu (rho nu)", mu_);
+}
 
+
+void Foam::functionObjects::valveMetrics::readDisc(const dictionary& dict)
+{
     const vector axis(dict.getOrDefault<vector>("axis", vector(0, 0, 1)));
     if (mag(axis) < VSMALL)
     {
@@ -723,7 +729,7 @@ bool Foam::functionObjects::valveMetrics::read(const dictionary& dict)
     e2_ = axis_ ^ e1_;
     origin_ = dict.getOrDefault<point>("origin", Zero);
     radius_ = dict.getOrDefault<scalar>("annulusRadius", 9.1e-3);
-    positive("annulusRadius", radius_);
+    checkPositive(dict, "annulusRadius", radius_);
     resolution_ = dict.getOrDefault<label>("resolution", 400);
     if (resolution_ < 2)
     {
@@ -732,6 +738,26 @@ bool Foam::functionObjects::valveMetrics::read(const dictionary& dict)
             << ": entry resolution " << resolution_ << " must be at least 2"
             << exit(FatalIOError);
     }
+}
+
+
+bool Foam::functionObjects::valveMetrics::read(const dictionary& dict)
+{
+    fvMeshFunctionObject::read(dict);
+    writeFile::read(dict);
+
+    UName_ = dict.getOrDefault<word>("U", "U");
+    pName_ = dict.getOrDefault<word>("p", "p");
+    phiName_ = dict.getOrDefault<word>("phi", "phi");
+
+    inletPatch_ = patch(dict, "inletPatch", "inlet");
+    outletPatch_ = patch(dict, "outletPatch", "outlet");
+    wallPatch_ = patch(dict, "wallPatch", "wall");
+
+    rho_ = dict.get<scalar>("rho");
+    checkPositive(dict, "rho", rho_);
+    readViscosity(dict);
+    readDisc(dict);
     optionName_ = dict.getOrDefault<word>("fvOption", word::null);
 
     solid_ = &findSolid(dict);
