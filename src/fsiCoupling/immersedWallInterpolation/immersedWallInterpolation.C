@@ -32,6 +32,78 @@ void Foam::immersedWallInterpolation::clear()
 }
 
 
+Foam::scalarField Foam::immersedWallInterpolation::reachSqr
+(
+    const labelUList& cells
+) const
+{
+    // the largest squared distance of each cell's points from its centre
+    const vectorField& C = mesh_.C();
+    scalarField span(cells.size(), 0);
+    forAll(cells, i)
+    {
+        for (const label pointi : mesh_.cellPoints()[cells[i]])
+        {
+            span[i] = max(span[i], magSqr(mesh_.points()[pointi] - C[cells[i]]));
+        }
+    }
+    return span;
+}
+
+
+Foam::label Foam::immersedWallInterpolation::outerNeighbour
+(
+    const label celli,
+    const vector& n,
+    PtrList<vectorField>& deltas,
+    scalar& s
+) const
+{
+    // the outer neighbour N: the face neighbour whose centre lies most
+    // nearly along n (a coupled face's neighbour across it: fvPatch::delta
+    // is the vector between the two cells' centres there, made as needed
+    // in deltas); its face, -1 if none; s: the centres' distance along n
+    const vectorField& C = mesh_.C();
+    const labelUList& own = mesh_.faceOwner();
+    const labelUList& nei = mesh_.faceNeighbour();
+    const polyBoundaryMesh& patches = mesh_.boundaryMesh();
+    label best = -1;
+    scalar bestCos = 0;
+    s = 0;
+    for (const label facei : mesh_.cells()[celli])
+    {
+        vector delta;
+        if (mesh_.isInternalFace(facei))
+        {
+            const label other = own[facei] == celli ? nei[facei] : own[facei];
+            delta = C[other] - C[celli];
+        }
+        else
+        {
+            const label patchi = patches.whichPatch(facei);
+            if (!patches[patchi].coupled())
+            {
+                continue;
+            }
+            if (!deltas.set(patchi))
+            {
+                deltas.set(patchi, mesh_.boundary()[patchi].delta().ptr());
+            }
+            delta = deltas[patchi][facei - patches[patchi].start()];
+        }
+        const scalar sf = delta & n;
+        const scalar c = sf/max(mag(delta), VSMALL);
+        if (sf > 0 && c > bestCos)
+        {
+            best = facei;
+            bestCos = c;
+            s = sf;
+        }
+    }
+    return best;
+}
+
+
 void Foam::immersedWallInterpolation::update
 (
     const triSurfaceSearch& surface,
@@ -48,14 +120,7 @@ void Foam::immersedWallInterpolation::update
     // nearest surface points within twice the cell's reach (the largest
     // distance of its points from its centre)
     const pointField samples(C, candidates);
-    scalarField span(candidates.size(), 0);
-    forAll(candidates, i)
-    {
-        for (const label pointi : mesh_.cellPoints()[candidates[i]])
-        {
-            span[i] = max(span[i], magSqr(mesh_.points()[pointi] - C[candidates[i]]));
-        }
-    }
+    const scalarField span(reachSqr(candidates));
     List<pointIndexHit> nearest;
     surface.findNearest(samples, 4*span, nearest);
 
@@ -66,11 +131,8 @@ void Foam::immersedWallInterpolation::update
     DynamicList<FixedList<scalar, 3>> weights(candidates.size());
     DynamicList<label> faces(candidates.size());
     DynamicList<scalar> weightN(candidates.size());
-    const labelUList& own = mesh_.faceOwner();
-    const labelUList& nei = mesh_.faceNeighbour();
-    const polyBoundaryMesh& patches = mesh_.boundaryMesh();
     // the coupled patches' cell-to-cell vectors (fvPatch::delta), as needed
-    PtrList<vectorField> deltas(patches.size());
+    PtrList<vectorField> deltas(mesh_.boundaryMesh().size());
     forAll(candidates, i)
     {
         if (!nearest[i].hit())
@@ -99,6 +161,7 @@ void Foam::immersedWallInterpolation::update
         {
             continue;
         }
+        // the nearest point's weights on its triangle's solid nodes
         const barycentric2D b(tri.pointToBarycentric(p));
         FixedList<scalar, 3> w;
         scalar sum = 0;
@@ -113,49 +176,10 @@ void Foam::immersedWallInterpolation::update
             w[k] /= max(sum, VSMALL);
             nd[k] = surfacePoints[t[k]];
         }
-        // the outer neighbour N: the face neighbour whose centre lies most
-        // nearly along n (a coupled face's neighbour across it: fvPatch::
-        // delta is the vector between the two cells' centres there)
-        label best = -1;
-        scalar bestCos = 0;
-        scalar bestS = 0;
-        for (const label facei : mesh_.cells()[celli])
-        {
-            vector delta;
-            if (mesh_.isInternalFace(facei))
-            {
-                const label other =
-                    own[facei] == celli ? nei[facei] : own[facei];
-                delta = C[other] - C[celli];
-            }
-            else
-            {
-                const label patchi = patches.whichPatch(facei);
-                if (!patches[patchi].coupled())
-                {
-                    continue;
-                }
-                if (!deltas.set(patchi))
-                {
-                    deltas.set
-                    (
-                        patchi,
-                        mesh_.boundary()[patchi].delta().ptr()
-                    );
-                }
-                delta = deltas[patchi][facei - patches[patchi].start()];
-            }
-            const scalar s = delta & n;
-            const scalar c = s/max(mag(delta), VSMALL);
-            if (s > 0 && c > bestCos)
-            {
-                best = facei;
-                bestCos = c;
-                bestS = s;
-            }
-        }
+        scalar s = 0;
+        const label best = outerNeighbour(celli, n, deltas, s);
         faces.append(best);
-        weightN.append(best >= 0 ? d/(d + bestS) : 0);
+        weightN.append(best >= 0 ? d/(d + s) : 0);
         cells.append(celli);
         distance.append(d);
         area.append(G);
