@@ -219,96 +219,66 @@ Foam::scalar Foam::immersedCutCells::cellFraction(const label celli) const
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-void Foam::immersedCutCells::update
-(
-    const triSurfaceSearch& surface,
-    const labelUList& cells
-)
+Foam::point Foam::immersedCutCells::onPlane(point x) const
 {
-    cells_ = cells;
-    pointPhi_.clear();
-    facePhi_.clear();
-    cellPhi_.clear();
-    aperture_.clear();
-    openArea_.clear();
-
-    // a 2D case (empty front and back): the samples on the mid-plane, and
-    // the distance to the solid's in-plane surface only (a slab spanning
-    // the depth: its faces facing the empty patches, dz/2 from the
-    // mid-plane, would otherwise be the nearest surface of any sample
-    // deeper inside than that, and cap phi there; the sign still comes
-    // from the whole closed surface)
+    // in a 2D case (empty front and back): x moved to the mid-plane
     const Vector<label>& solD = mesh_.solutionD();
     const point mid(mesh_.bounds().midpoint());
-    const bool twoD = mesh_.nSolutionD() < vector::nComponents;
-    auto onPlane = [&](point x)
+    for (direction d = 0; d < vector::nComponents; ++d)
     {
+        if (solD[d] < 0) { x[d] = mid[d]; }
+    }
+    return x;
+}
+
+
+Foam::autoPtr<Foam::triSurface> Foam::immersedCutCells::inPlaneSides
+(
+    const triSurface& tris
+) const
+{
+    // a 2D case: the triangles whose normal is within 30 degrees of the
+    // plane (a slab spanning the depth: its faces facing the empty
+    // patches, dz/2 from the mid-plane, would otherwise be the nearest
+    // surface of any sample deeper inside than that, and cap phi there)
+    const Vector<label>& solD = mesh_.solutionD();
+    const vectorField& n = tris.faceNormals();
+    DynamicList<labelledTri> inPlane(tris.size());
+    forAll(tris, facei)
+    {
+        scalar out = 0;
         for (direction d = 0; d < vector::nComponents; ++d)
         {
-            if (solD[d] < 0) { x[d] = mid[d]; }
+            if (solD[d] < 0) { out += sqr(n[facei][d]); }
         }
-        return x;
-    };
-    autoPtr<triSurface> sides;
-    autoPtr<triSurfaceSearch> sideSearch;
-    if (twoD)
-    {
-        const triSurface& tris = surface.surface();
-        const vectorField& n = tris.faceNormals();
-        DynamicList<labelledTri> inPlane(tris.size());
-        forAll(tris, facei)
+        if (out < 0.25)
         {
-            scalar out = 0;
-            for (direction d = 0; d < vector::nComponents; ++d)
-            {
-                if (solD[d] < 0) { out += sqr(n[facei][d]); }
-            }
-            if (out < 0.25)     // normal within 30 degrees of the plane
-            {
-                inPlane.append(tris[facei]);
-            }
+            inPlane.append(tris[facei]);
         }
-        sides.reset(new triSurface(List<labelledTri>(inPlane), tris.points()));
-        sideSearch.reset(new triSurfaceSearch(sides()));
     }
-    const triSurfaceSearch& distance = twoD ? sideSearch() : surface;
-
-    // Which cells the surface passes near: a cell whose centre has no
-    // surface point within its reach r (the largest distance of its
-    // points from its centre, in the plane in 2D) lies whole on one side,
-    // its fraction 0 or 1 and its faces' apertures too, whatever the
-    // magnitude of phi. The samples of the other cells are searched
-    // within 2 r, which holds their nearest surface point (within r of
-    // the centre, so within 2 r of any point of the cell): exact. Most
-    // covered cells of a thick solid are far from its surface, and the
-    // unbounded search of their samples was most of the cost (Turek-Hron
-    // FSI1, N = 24, -refine 2: a quarter of the coupled run).
-    const pointField& pts = mesh_.points();
-    const vectorField& Cc = mesh_.cellCentres();
-    const labelListList& cellPoints = mesh_.cellPoints();
-    scalarField reachSqr(cells_.size(), 0);
-    pointField centres(cells_.size());
-    forAll(cells_, i)
-    {
-        const label celli = cells_[i];
-        centres[i] = onPlane(Cc[celli]);
-        for (const label pointi : cellPoints[celli])
-        {
-            reachSqr[i] =
-                max(reachSqr[i], magSqr(onPlane(pts[pointi]) - centres[i]));
-        }
-        reachSqr[i] *= 1 + 1e-6;
-    }
-    const scalarField centrePhi
+    return autoPtr<triSurface>
     (
-        signedDistance(surface, distance, centres, reachSqr)
+        new triSurface(List<labelledTri>(inPlane), tris.points())
     );
+}
 
+
+void Foam::immersedCutCells::sampleNearCells
+(
+    const triSurfaceSearch& surface,
+    const triSurfaceSearch& distance,
+    const pointField& centres,
+    const scalarField& reachSqr,
+    const scalarField& centrePhi,
+    DynamicList<label>& faceLabels
+)
+{
     // The samples of the cells near the surface: their points, face
     // centres and centres (each once), each searched within the largest
     // 2 r of the near cells it belongs to
+    const pointField& pts = mesh_.points();
     Map<label> pointSample, faceSample;
-    DynamicList<label> pointLabels, faceLabels, nearCells;
+    DynamicList<label> pointLabels, nearCells;
     DynamicList<scalar> pointR2, faceR2;
     auto add = [](Map<label>& index, DynamicList<label>& labels,
                   DynamicList<scalar>& r2, const label key, const scalar r)
@@ -371,7 +341,15 @@ void Foam::immersedCutCells::update
     for (const label pointi : pointLabels) { pointPhi_.set(pointi, phi[k++]); }
     for (const label facei : faceLabels) { facePhi_.set(facei, phi[k++]); }
     for (const label i : nearCells) { cellPhi_.set(cells_[i], phi[k++]); }
+}
 
+
+void Foam::immersedCutCells::fillFarCells
+(
+    const scalarField& centrePhi,
+    DynamicList<label>& faceLabels
+)
+{
     // The cells whole on one side: phi of the centre's sign, the reach as
     // its magnitude, where no near cell gave an exact value
     forAll(cells_, i)
@@ -395,6 +373,69 @@ void Foam::immersedCutCells::update
             }
         }
     }
+}
+
+
+void Foam::immersedCutCells::update
+(
+    const triSurfaceSearch& surface,
+    const labelUList& cells
+)
+{
+    cells_ = cells;
+    pointPhi_.clear();
+    facePhi_.clear();
+    cellPhi_.clear();
+    aperture_.clear();
+    openArea_.clear();
+
+    // a 2D case (empty front and back): the samples on the mid-plane, and
+    // the distance to the solid's in-plane surface only (the sign still
+    // comes from the whole closed surface)
+    const bool twoD = mesh_.nSolutionD() < vector::nComponents;
+    autoPtr<triSurface> sides;
+    autoPtr<triSurfaceSearch> sideSearch;
+    if (twoD)
+    {
+        sides = inPlaneSides(surface.surface());
+        sideSearch.reset(new triSurfaceSearch(sides()));
+    }
+    const triSurfaceSearch& distance = twoD ? sideSearch() : surface;
+
+    // Which cells the surface passes near: a cell whose centre has no
+    // surface point within its reach r (the largest distance of its
+    // points from its centre, in the plane in 2D) lies whole on one side,
+    // its fraction 0 or 1 and its faces' apertures too, whatever the
+    // magnitude of phi. The samples of the other cells are searched
+    // within 2 r, which holds their nearest surface point (within r of
+    // the centre, so within 2 r of any point of the cell): exact. Most
+    // covered cells of a thick solid are far from its surface, and the
+    // unbounded search of their samples was most of the cost (Turek-Hron
+    // FSI1, N = 24, -refine 2: a quarter of the coupled run).
+    const pointField& pts = mesh_.points();
+    const vectorField& Cc = mesh_.cellCentres();
+    const labelListList& cellPoints = mesh_.cellPoints();
+    scalarField reachSqr(cells_.size(), 0);
+    pointField centres(cells_.size());
+    forAll(cells_, i)
+    {
+        const label celli = cells_[i];
+        centres[i] = onPlane(Cc[celli]);
+        for (const label pointi : cellPoints[celli])
+        {
+            reachSqr[i] =
+                max(reachSqr[i], magSqr(onPlane(pts[pointi]) - centres[i]));
+        }
+        reachSqr[i] *= 1 + 1e-6;
+    }
+    const scalarField centrePhi
+    (
+        signedDistance(surface, distance, centres, reachSqr)
+    );
+
+    DynamicList<label> faceLabels;
+    sampleNearCells(surface, distance, centres, reachSqr, centrePhi, faceLabels);
+    fillFarCells(centrePhi, faceLabels);
 
     for (const label facei : faceLabels)
     {
