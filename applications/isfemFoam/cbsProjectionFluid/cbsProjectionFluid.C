@@ -206,9 +206,6 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
         // Step II's coefficient, zero on the faces of the covered cells
         ib->constrainFlux(phiHbyA);
         ib->constrainLaplacian(rAUf);
-        // semi-implicit coupling: the covered cells' inertia in the
-        // coefficient, the last step's pressure flux in phiHbyA
-        ib->inertialProjection(phiHbyA, rAUf, rAU, p_.oldTime());
     }
 
     if (p_.needReference())

@@ -76,10 +76,6 @@ Foam::immersedBoundary::immersedBoundary
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
     internalFaces_(),
     boundaryFaces_(),
-    inertial_(false),
-    inertia_(),
-    immersedRAUf_(),
-    solidDivergence_(),
     wallFraction_()
 {}
 
@@ -92,10 +88,6 @@ void Foam::immersedBoundary::update
     const vectorField& coveredVelocity
 )
 {
-    cutFaces_.clear();
-    cutAperture_.clear();
-    cutVelocity_.clear();
-
     // The cells covered since the last update (the index is still the
     // last update's) and those uncovered since
     DynamicList<label> newlyCovered;
@@ -114,7 +106,6 @@ void Foam::immersedBoundary::update
     }
     coveredCells_ = coveredCells;
     coveredVelocity_ = coveredVelocity;
-    inertial_ = false;      // setInertia() for this update
     forAll(coveredCells_, i)
     {
         coveredIndex_[coveredCells_[i]] = i;
@@ -1103,13 +1094,6 @@ void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
             }
         }
     }
-
-    forAll(cutFaces_, i)
-    {
-        const label facei = cutFaces_[i];
-        const scalar a = cutAperture_[i];
-        phiI[facei] = a*phiI[facei] + (1 - a)*(cutVelocity_[i] & Sf[facei]);
-    }
 }
 
 
@@ -1369,10 +1353,6 @@ void Foam::immersedBoundary::constrainLaplacian
     {
         rI[facei] = 0;
     }
-    forAll(cutFaces_, i)
-    {
-        rI[cutFaces_[i]] *= cutAperture_[i];
-    }
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     auto& rB = rAUf.boundaryFieldRef();
     for (const label facei : boundaryFaces_)
@@ -1400,23 +1380,6 @@ void Foam::immersedBoundary::constrainPressure
     // fixed pressure: pure Neumann blocks, singular (a single enclosed
     // cell is a zero row); GAMG diverged on them. One cell of each gets a
     // reference to its current value, as fvMatrix::setReference does
-    if (inertial_)
-    {
-        // semi-implicit coupling: the covered cells are in the equation
-        // with their inertia, no block is enclosed. Their rows keep the
-        // pressure flux of p0 only: the solid's own volume change (a
-        // compressible solid, or the interpolation of its velocity to the
-        // cells) is not the fluid's to cancel, so the pressure increment
-        // moves the solid without compressing it, and continuity holds in
-        // the fluid cells (the solid's net volume change stays zero by
-        // constrainFlux)
-        scalarField& source = pEqn.source();
-        forAll(coveredCells_, i)
-        {
-            source[coveredCells_[i]] -= solidDivergence_[i];
-        }
-        return;
-    }
     scalarField& diag = pEqn.diag();
     scalarField& source = pEqn.source();
     const scalar D = 1e-6*gAverage(diag);
@@ -1732,12 +1695,6 @@ Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::correctPressure
             ++count[io];
         }
     }
-    if (inertial_)
-    {
-        // the covered cells' pressure is the solution (the next step's
-        // increment starts from it)
-        return tgrad;
-    }
     scalarField& pI = p.primitiveFieldRef();
     forAll(coveredCells_, i)
     {
@@ -1757,11 +1714,9 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
     const volVectorField& U,
     const volScalarField& nu,
     const scalar rhoFluid,
-    vector& coveredGradP,
-    const bool withPressure
+    vector& coveredGradP
 ) const
 {
-    const scalar pw1 = withPressure ? 1 : 0;
     tmp<vectorField> tt(new vectorField(coveredCells_.size(), Zero));
     vectorField& t = tt.ref();
     coveredGradP = Zero;
@@ -1805,7 +1760,7 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
         t[io >= 0 ? io : in] +=
             rhoFluid
            *(
-              - pw1*pw*S
+              - pw*S
               + nu[F]*mag(S)*delta[facei]*(U[F] - U[C])
             );
         coveredGradP += internalWall[facej]*S;
@@ -1855,7 +1810,7 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
         t[io] +=
             rhoFluid
            *(
-              - pw1*pw*S
+              - pw*S
               + nuNbr[b]*mag(S)*delta.boundaryField()[patchi][i]
                *(Unbr[b] - U[o])
             );

@@ -24,11 +24,6 @@ Model (unit-mass dry modes of the solid, frequencies w, time step dt = 1):
 The largest |eigenvalue| of the step's transfer matrix is the growth per
 step; 1.0 is neutral. Random modes and operators, the worst of the trials.
 
-Also the semi-implicit coupling (coupling semiImplicit) as built, and the
-contraction per iteration if its pressure equation (which carries the
-solid's inertia, the exact added-mass operator) solves the iterations of
-the target scheme (the solid alone, theta = 1).
-
 Run: python3 couplingModel.py   (numpy and scipy: Debian's python3-numpy,
 python3-scipy). Prints the table in immersedForcing.H.
 """
@@ -90,50 +85,6 @@ def solidPropagator(w, dt=1.0, M=None):
             E[n:2*n, :n], E[n:2*n, n:2*n], E[n:2*n, 2*n:]]
 
 
-def growthSemiImplicit(w, A, S, c=(1.5, -2.0, 0.5), dt=1.0):
-    """The semi-implicit coupling as built (coupling semiImplicit): the
-    solid steps under the last step's force F^n, the pressure equation
-    carries its inertia, F^{n+1} solves
-        F^{n+1} = -(A + S)/dt (c0 (vbar + dv) + c1 s_old + c2 s_oldold),
-        dv = dt (F^{n+1} - F^n)/m,
-    and the solid's end velocity and position are corrected by dv and
-    dt dv (ExplicitSolid::correctVelocity)"""
-    n = len(w)
-    I = np.eye(n)
-    Aeff = A + S
-    Px, Pv, Pg, Qx, Qv, Qg = solidPropagator(w, dt)
-    T = np.zeros((5*n, 5*n))
-    for j in range(5*n):
-        e = np.zeros(5*n)
-        e[j] = 1
-        x0, v0, F, so, soo = np.split(e, 5)
-        x1 = Px @ x0 + Pv @ v0 + Pg @ F
-        v1 = Qx @ x0 + Qv @ v0 + Qg @ F
-        vb = (x1 - x0)/dt
-        Fn = np.linalg.solve(
-            I + c[0]*Aeff,
-            -Aeff/dt @ (c[0]*(vb - dt*F) + c[1]*so + c[2]*soo))
-        dv = dt*(Fn - F)
-        T[:, j] = np.concatenate([x1 + dt*dv, v1 + dv, Fn, vb + dv, so])
-    return max(abs(np.linalg.eigvals(T)))
-
-
-def contractionSemiImplicit(w, A, S, theta, c0=1.5, dt=1.0):
-    """Coupling iterations of the target scheme solved by the semi-
-    implicit pressure equation: each iteration the solid steps under the
-    held force x (its own mass), the fluid sees vbar(x) + theta dt x/(2m)
-    + dv, dv = dt (F - x)/m, and x <- F. At convergence dv = 0 and the
-    step is the target scheme. Returns the spectral radius of dF/dx (the
-    contraction per iteration, before any acceleration)"""
-    n = len(w)
-    I = np.eye(n)
-    Aeff = A + S
-    Pg = solidPropagator(w, dt)[2]
-    J = np.linalg.solve(
-        I + c0*Aeff, -Aeff/dt*c0 @ (Pg/dt + (theta/2 - 1)*dt*I))
-    return max(abs(np.linalg.eigvals(J)))
-
-
 def randomOperators(mu, skew, trials, n, seed):
     """Random dry frequencies w, added mass A (norm mu), a lumped guess of
     its diagonal for the solid's added mass, and a skew part of relative
@@ -165,12 +116,3 @@ if __name__ == '__main__':
             print('%-6s %-6g %12.4f %12.4f' % (
                 correction, theta,
                 worst(correction, theta, 0), worst(correction, theta, 0.05)))
-    print('semi-implicit as built: growth per step %.4f, %.4f' % tuple(
-        max(growthSemiImplicit(w, A, Sk) for w, A, _, Sk in
-            randomOperators(100, skew, 60, 5, 3)) for skew in (0, 0.05)))
-    for theta in (0, 1):
-        print('semi-implicit iterations, theta %g: contraction %.4f, %.4f'
-              % ((theta,) + tuple(
-                  max(contractionSemiImplicit(w, A, Sk, theta)
-                      for w, A, _, Sk in randomOperators(100, skew, 60, 5, 4))
-                  for skew in (0, 0.05))))

@@ -3,9 +3,9 @@
 \*---------------------------------------------------------------------------*/
 
 #include "immersedForcing.H"
+#include "readEnumEntry.H"
 #include "scalarMatrices.H"
 #include "fvMatrices.H"
-#include "fvcGrad.H"
 #include "singlePhaseTransportModel.H"
 #include "clockValue.H"
 #include "syncTools.H"
@@ -24,6 +24,20 @@ namespace fv
     addToRunTimeSelectionTable(option, immersedForcing, dictionary);
 }
 }
+
+const Foam::Enum<Foam::fv::immersedForcing::wallType>
+Foam::fv::immersedForcing::wallTypeNames
+({
+    { wallType::ghost, "ghost" },
+    { wallType::staircase, "staircase" },
+});
+
+const Foam::Enum<Foam::fv::immersedForcing::cutCellsType>
+Foam::fv::immersedForcing::cutCellsTypeNames
+({
+    { cutCellsType::no, "no" },
+    { cutCellsType::interpolation, "interpolation" },
+});
 
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
@@ -196,11 +210,6 @@ void Foam::fv::immersedForcing::searchPairs()
     }
     wallTime_ = double(wallStart.elapsed());
 
-    if (semiImplicit_)
-    {
-        setInertia();
-    }
-
     scalarField& chi = coverage_.primitiveFieldRef();
     chi = 0;
     UIndirectList<scalar>(chi, boundary_.coveredCells()) = 1.0;
@@ -234,18 +243,6 @@ void Foam::fv::immersedForcing::readAddedMass(const dictionary& dict)
     addedMassLength_ = 0;
     if (!solid.isDeformable())
     {
-        return;
-    }
-    if (semiImplicit_)
-    {
-        if (dict.getOrDefault<scalar>("addedMassLength", 0) != 0)
-        {
-            FatalIOErrorInFunction(dict)
-                << "addedMassLength stabilises the explicit coupling; with"
-                << " coupling semiImplicit the pressure equation carries the"
-                << " solid's inertia. Remove the entry, or set coupling"
-                << " explicit" << exit(FatalIOError);
-        }
         return;
     }
     // Iterated to convergence the solid must step alone: an added mass in
@@ -353,14 +350,6 @@ void Foam::fv::immersedForcing::write()
     {
         writeColumns(dir/"couplingColumns");
     }
-    if (semiImplicit_)
-    {
-        // every rank its own copy, as the solid's state
-        OFstream os(dir/"addedMass");
-        os.precision(17);
-        os << draggedMass_ << nl;
-
-    }
     coupling_.solid().write();
 }
 
@@ -377,9 +366,9 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     }
 
     // The cut-cell geometry of the covered cells, unless the last one
-    // holds (cutCellsCurrent): the volume fractions of volume-fraction
-    // cut cells are those of the step's first coupling iteration, held in
-    // its later ones with the split (a surface search per iteration was
+    // holds (cutCellsCurrent): the volume fractions of the cut cells are
+    // those of the step's first coupling iteration, held in its later
+    // ones with the split (a surface search per iteration was
     // most of the coupling's cost on refined meshes: 0.42 s per step at
     // Turek-Hron N = 36, -refine 2, 3,072 covered cells), and the
     // penalty's fixed point stays smooth in the force; a surface at rest
@@ -390,13 +379,9 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     {
         cutCells_.update(search(), covered);
         cutSurfacePoints_ = search.points();
-        if (volumeFraction_)
-        {
-            coveredFraction_ = cutCells_.fraction();
-        }
+        coveredFraction_ = cutCells_.fraction();
     }
-    const scalarField& fraction =
-        volumeFraction_ ? coveredFraction_ : cutCells_.fraction();
+    const scalarField& fraction = coveredFraction_;
 
     // A covered cell with some fluid in it (more than kappaMin of its
     // volume) beside a covered cell with at most kappaMin fluid is a cut
@@ -411,9 +396,8 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     // of a centre on the surface made one corner of its tail cut and the
     // other covered, lift +54 %, and the deformable flag's tail drifted.)
     // The split is made in a step's first coupling iteration and held in
-    // its later ones, as the pairs are (searchPairs); the apertures,
-    // fractions and walls of aperture cut cells follow the surface in
-    // every iteration (volume fractions are held, above).
+    // its later ones, as the pairs are (searchPairs), with the fractions
+    // (above).
     const scalar kappaMin = 0.02;
     if (newSplit)
     {
@@ -438,11 +422,11 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
                  && neighbourHas(covered[i], state, nbrState, 1);
             }
         }
-        // and, with volume-fraction cut cells, layer after layer: a
-        // covered cell with some fluid beside a cut cell, until none is
-        // left. Where a sloped surface enters a new row of cells, the cell
-        // it first touches (nearly all fluid) lies beside a cell the
-        // surface has not yet filled, and covered whole it puts the wall
+        // and layer after layer: a covered cell with some fluid beside a
+        // cut cell, until none is left. Where a sloped surface enters a
+        // new row of cells, the cell it first touches (nearly all fluid)
+        // lies beside a cell the surface has not yet filled, and covered
+        // whole it puts the wall
         // on its faces: on the deformable Turek-Hron flag (N = 44) one
         // cell at the tail's upper edge was covered and uncovered every
         // other step once u_y(A) reached 0.2 h, and the lift on the flag
@@ -452,36 +436,33 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
         // at a time, carried the drag's spikes (up to +150 N/m in a step,
         // as their faces' staircase pressure came and went). A thin solid
         // fills no cell, so it keeps its staircase.
-        if (volumeFraction_)
+        // (every rank makes the same passes: the loop ends only on the
+        // reduced flag, after a pass that grew no rank's cells)
+        labelList layer(mesh_.nCells(), 0);
+        while (true)
         {
-            // (every rank makes the same passes: the loop ends only on
-            // the reduced flag, after a pass that grew no rank's cells)
-            labelList layer(mesh_.nCells(), 0);
-            while (true)
+            forAll(covered, i)
             {
-                forAll(covered, i)
+                layer[covered[i]] = isCut_[i] ? 1 : 0;
+            }
+            labelList nbrLayer;
+            syncTools::swapBoundaryCellList(mesh_, layer, nbrLayer);
+            bool grown = false;
+            forAll(covered, i)
+            {
+                if
+                (
+                    !isCut_[i] && state[covered[i]] == 2
+                 && neighbourHas(covered[i], layer, nbrLayer, 1)
+                )
                 {
-                    layer[covered[i]] = isCut_[i] ? 1 : 0;
+                    isCut_[i] = true;
+                    grown = true;
                 }
-                labelList nbrLayer;
-                syncTools::swapBoundaryCellList(mesh_, layer, nbrLayer);
-                bool grown = false;
-                forAll(covered, i)
-                {
-                    if
-                    (
-                        !isCut_[i] && state[covered[i]] == 2
-                     && neighbourHas(covered[i], layer, nbrLayer, 1)
-                    )
-                    {
-                        isCut_[i] = true;
-                        grown = true;
-                    }
-                }
-                if (!returnReduce(grown, orOp<bool>()))
-                {
-                    break;
-                }
+            }
+            if (!returnReduce(grown, orOp<bool>()))
+            {
+                break;
             }
         }
     }
@@ -508,204 +489,24 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     cutCellList_.transfer(xCells);
     cutPairIndex_.transfer(xIndex);
 
-    if (volumeFraction_)
-    {
-        // volume-fraction cut cells: whole fluid cells (no cut faces:
-        // boundary_.update cleared them) whose solid part is held by the
-        // penalty of constrain
-        cutVelocity_.setSize(cutCellList_.size());
-        cutFraction_.setSize(cutCellList_.size());
-        forAll(cutCellList_, j)
-        {
-            cutVelocity_[j] = coveredVelocity_[cutPairIndex_[j]];
-            cutFraction_[j] = fraction[cutPairIndex_[j]];
-        }
-        cutFaceList_.clear();
-        cutFaceCoeff_.clear();
-        if (interpolation_)
-        {
-            updateWallInterpolation(newGeometry, search);
-        }
-        if (debug)
-        {
-            Info<< "immersedForcing: " << cutCellList_.size()
-                << " volume-fraction cut cells, solid volume "
-                << sum((1 - cutFraction_)*scalarField(mesh_.V(), cutCellList_))
-                << endl;
-        }
-        return;
-    }
-
-    // their faces to fluid and cut cells
-    Map<label> index(2*covered.size());
-    forAll(covered, i)
-    {
-        index.insert(covered[i], i);
-    }
-    const labelUList& own = mesh_.owner();
-    const labelUList& nei = mesh_.neighbour();
-    const vectorField& Sf = mesh_.faceAreas();
-    DynamicList<label> faces;
-    DynamicList<scalar> aperture;
-    DynamicList<vector> velocity;
-    labelHashSet done;
-    Map<point> valuePoint(2*cutCellList_.size());
+    // the cut cells: whole fluid cells (no cut faces) whose centre, if
+    // inside, is held by the penalty of constrain, and the forcing cells
+    // of the interpolation
     cutVelocity_.setSize(cutCellList_.size());
-    cutWall_.setSize(cutCellList_.size());
-    cutDistance_.setSize(cutCellList_.size());
-    cutExtra_.setSize(cutCellList_.size());
     cutFraction_.setSize(cutCellList_.size());
     forAll(cutCellList_, j)
     {
-        const label celli = cutCellList_[j];
-        const label i = cutPairIndex_[j];
-        cutVelocity_[j] = coveredVelocity_[i];
-        cutDistance_[j] = cutCells_.centreDistance(celli);
-        cutWall_[j] = Zero;
-        cutExtra_[j] = 0;
-        cutFraction_[j] = cutCells_.fraction()[i];
-        if (cutDistance_[j] <= 0)
-        {
-            // centre inside: the distance of the wall shear is that of the
-            // fluid part's middle to the wall, half its thickness
-            // kappa V/|W| (W the wall's area vector, minus the sum of the
-            // open areas a_f S_f); its faces to covered cells get the wall
-            // shear nu |S_f| (1/d - delta_f) beyond the Laplacian's, which
-            // sees u_s at the covered cell's centre (no wall between two
-            // centres inside for the ghost). Immersed cylinder at 20 cells
-            // across: without it c_D +2.5 to +4.0 % (see fluidForce)
-            vector wallTotal(Zero);
-            for (const label facei : mesh_.cells()[celli])
-            {
-                if (mesh_.isInternalFace(facei))
-                {
-                    wallTotal -= cutCells_.aperture(facei)
-                       *(own[facei] == celli ? Sf[facei] : -Sf[facei]);
-                }
-            }
-            const scalar s = -cutDistance_[j];
-            cutDistance_[j] = max
-            (
-                0.5*cutCells_.fraction()[i]*mesh_.V()[celli]
-               /max(mag(wallTotal), SMALL),
-                0.05*cbrt(mesh_.V()[celli])
-            );
-            // its velocity is that of its fluid part, located at the
-            // part's middle: from the centre across the wall (distance s)
-            // and on by half the fluid's thickness (along -W_wall)
-            valuePoint.insert
-            (
-                celli,
-                mesh_.C()[celli]
-              - (s + cutDistance_[j])*wallTotal/max(mag(wallTotal), SMALL)
-            );
-            for (const label facei : mesh_.cells()[celli])
-            {
-                if (!mesh_.isInternalFace(facei))
-                {
-                    continue;
-                }
-                const label o =
-                    own[facei] == celli ? nei[facei] : own[facei];
-                const auto it = index.cfind(o);
-                if (it.found() && !isCut[*it])
-                {
-                    cutExtra_[j] += mag(Sf[facei])*max
-                    (
-                        1/cutDistance_[j]
-                      - mesh_.nonOrthDeltaCoeffs()[facei],
-                        0.0
-                    );
-                }
-            }
-        }
-        for (const label facei : mesh_.cells()[celli])
-        {
-            if (!mesh_.isInternalFace(facei))
-            {
-                continue;
-            }
-            const label other = own[facei] == celli ? nei[facei] : own[facei];
-            const auto iter = index.cfind(other);
-            if (iter.found() && !isCut[*iter])
-            {
-                continue;   // to a covered cell: an immersed face
-            }
-            const scalar a = cutCells_.aperture(facei);
-            cutWall_[j] +=
-                (1 - a)*(own[facei] == celli ? Sf[facei] : -Sf[facei]);
-            if (done.insert(facei))
-            {
-                faces.append(facei);
-                aperture.append(a);
-                velocity.append
-                (
-                    iter.found()
-                  ? 0.5*(coveredVelocity_[i] + coveredVelocity_[*iter])
-                  : coveredVelocity_[i]
-                );
-            }
-        }
+        cutVelocity_[j] = coveredVelocity_[cutPairIndex_[j]];
+        cutFraction_[j] = fraction[cutPairIndex_[j]];
     }
-    // The faces of the cut cells whose centre is inside (their value at
-    // the fluid part's middle) to fluid and cut cells: the viscous
-    // coupling across them at the distance between the two cells' value
-    // points (the centre for a fluid cell or a cut cell whose centre is
-    // outside), nu |S_f| (1/d - delta_f) beyond the Laplacian's
-    // (constrain). Without it the fluid cell beside a cut cell a fraction
-    // kappa fluid sees the wall (1 - kappa) h/2 too far inside the solid
-    // and only half of the wall's motion within the cell: Poiseuille flow
-    // beside an immersed wall 0.2 h into a cell, effective gap +0.42 h,
-    // with it +0.10 h (test fsiCoupling.immersedChannel.cutCells).
-    {
-        const vectorField& C = mesh_.C();
-        const scalarField& deltaCoeffs = mesh_.nonOrthDeltaCoeffs();
-        DynamicList<label> cFaces;
-        DynamicList<scalar> cCoeffs;
-        labelHashSet seen;
-        forAllConstIters(valuePoint, iter)
-        {
-            const label celli = iter.key();
-            for (const label facei : mesh_.cells()[celli])
-            {
-                if (!mesh_.isInternalFace(facei) || !seen.insert(facei))
-                {
-                    continue;
-                }
-                const label o = own[facei];
-                const label n = nei[facei];
-                const auto it = index.cfind(o == celli ? n : o);
-                if (it.found() && !isCut[*it])
-                {
-                    continue;   // to a covered cell: cutExtra_
-                }
-                const auto po = valuePoint.cfind(o);
-                const auto pn = valuePoint.cfind(n);
-                const point Po = po.found() ? *po : C[o];
-                const point Pn = pn.found() ? *pn : C[n];
-                const scalar delta = deltaCoeffs[facei];
-                const scalar d = max
-                (
-                    ((Pn - Po) & Sf[facei])/mag(Sf[facei]),
-                    0.2/delta
-                );
-                cFaces.append(facei);
-                cCoeffs.append(mag(Sf[facei])*(1/d - delta));
-            }
-        }
-        cutFaceList_.transfer(cFaces);
-        cutFaceCoeff_.transfer(cCoeffs);
-    }
-
+    updateWallInterpolation(newGeometry, search);
     if (debug)
     {
-        scalar closed = 0;
-        for (const scalar a : aperture) { closed += 1 - a; }
-        Info<< "immersedForcing: " << cutCellList_.size() << " cut cells, "
-            << faces.size() << " cut faces, sum (1 - a_f) " << closed
-            << ", sum |W| " << sum(mag(cutWall_)) << endl;
+        Info<< "immersedForcing: " << cutCellList_.size()
+            << " cut cells, solid volume "
+            << sum((1 - cutFraction_)*scalarField(mesh_.V(), cutCellList_))
+            << endl;
     }
-    boundary_.setCutFaces(faces, aperture, vectorField(velocity));
 }
 
 
@@ -874,7 +675,7 @@ bool Foam::fv::immersedForcing::cutCellsCurrent
 ) const
 {
     const labelList& covered = coupling_.pairs().coveredCells();
-    if (volumeFraction_ && iteration_ > 0 && isCut_.size() == covered.size())
+    if (iteration_ > 0 && isCut_.size() == covered.size())
     {
         return true;    // coveredFraction_ of the step's first iteration
     }
@@ -890,14 +691,13 @@ bool Foam::fv::immersedForcing::needsOctree
     const pointField& points
 ) const
 {
-    // cut cells (unless current), the solid fraction, and the wall
-    // location of centre coverage or beside cut cells search the whole
-    // surface; the wall location of touching coverage without cut cells
-    // tests each covered cell's own elements (no octree: the covered
-    // cells of the projection must be the pairs')
+    // cut cells (unless current) with their forcing cells, the solid
+    // fraction, and the wall location of centre coverage search the whole
+    // surface; the wall location of touching coverage tests each covered
+    // cell's own elements (no octree: the covered cells of the projection
+    // must be the pairs')
     return
-        (cut_ && (ghostWall_ || !cutCellsCurrent(points)))
-     || (interpolation_ && !wallInterpolationCurrent_)
+        (cut_ && (!cutCellsCurrent(points) || !wallInterpolationCurrent_))
      || solidFraction
      || (
             ghostWall_
@@ -956,89 +756,49 @@ void Foam::fv::immersedForcing::fluidForce
     const tmp<volScalarField> tnu(transport.nu());
 
     // Traction on the staircase surface of the covered cells (pressure
-    // and viscous, Eqs. 44/48 boundary terms), per covered cell; with the
-    // semi-implicit coupling the pressure part is the force the pressure
-    // equation gave the covered cells (immersedBoundary::pressureForce)
+    // and viscous, Eqs. 44/48 boundary terms), per covered cell
     vectorField t
     (
-        boundary_.traction
-        (
-            p, U, tnu(), rhoFluid_, coveredGradP_, !semiImplicit_
-        )
+        boundary_.traction(p, U, tnu(), rhoFluid_, coveredGradP_)
     );
     // To the solid nodes (held for the solid's next step)
     if (cut_)
     {
         // to the pairs' covered cells, with the cut cells' force: the
-        // pressure of the cell on the closed part of its cut faces, and
-        // the wall shear of its fluid against the solid (constrain)
+        // reaction of the penalty (constrain) that holds a cut cell whose
+        // centre is inside to u_s against the fluid (pressure and shear on
+        // the solid inside the cell; Brinkman penalty force, Angot,
+        // Bruneau & Fabrie 1999), less the inertia of the fictitious
+        // fluid in the cell's solid part: the cell's momentum row holds
+        // its whole volume, and the penalty also accelerates the fluid
+        // standing in for the solid part, rho (1 - kappa) V du_s/dt,
+        // which the solid, with its own mass, must not feel again (the
+        // internal-fluid term of the hydrodynamic force on a particle,
+        // Uhlmann 2005, J Comput Phys 209: F = -rho int f dV + rho d/dt
+        // int_solid u dV)
         vectorField tp(coupling_.pairs().coveredCells().size(), Zero);
         UIndirectList<vector>(tp, coveredPairIndex_) = t;
-        vectorField fictitiousInertia;
-        if (volumeFraction_)
+        const vectorField us0
+        (
+            stepDeltaT_ > 0 && velocities0_.size() == solid.nPoints()
+          ? coupling_.solidToFluid(velocities0_)
+          : tmp<vectorField>(coveredVelocity_)
+        );
+        const scalar rDt = stepDeltaT_ > 0 ? 1/stepDeltaT_ : 0;
+        vectorField fictitiousInertia(cutCellList_.size());
+        forAll(cutCellList_, j)
         {
-            // the reaction of the penalty (constrain): the force that
-            // holds the cell's solid part to u_s against the fluid
-            // (pressure and shear on the solid inside the cell; Brinkman
-            // penalty force, Angot, Bruneau & Fabrie 1999), less the
-            // inertia of the fictitious fluid in the cell's solid part:
-            // the cell's momentum row holds its whole volume, and the
-            // penalty also accelerates the fluid standing in for the solid
-            // part, rho (1 - kappa) V du_s/dt, which the solid, with its
-            // own mass, must not feel again (the internal-fluid term of the
-            // hydrodynamic force on a particle, Uhlmann 2005, J Comput Phys
-            // 209: F = -rho int f dV + rho d/dt int_solid u dV)
-            const vectorField us0
-            (
-                stepDeltaT_ > 0 && velocities0_.size() == solid.nPoints()
-              ? coupling_.solidToFluid(velocities0_)
-              : tmp<vectorField>(coveredVelocity_)
-            );
-            const scalar rDt = stepDeltaT_ > 0 ? 1/stepDeltaT_ : 0;
-            fictitiousInertia.setSize(cutCellList_.size());
-            forAll(cutCellList_, j)
-            {
-                const label celli = cutCellList_[j];
-                const label i = cutPairIndex_[j];
-                const scalar K =
-                    j < cutPenalty_.size() ? cutPenalty_[j] : 0;
-                tp[i] = rhoFluid_*K*(U[celli] - cutVelocity_[j]);
-                // (cutCells interpolation: a cell whose centre is outside
-                // is a fluid cell, with no fictitious fluid)
-                fictitiousInertia[j] =
-                    interpolation_ && !cutInside_[j]
-                  ? Zero
-                  : rhoFluid_*(1 - cutFraction_[j])*mesh_.V()[celli]
-                   *(cutVelocity_[j] - us0[i])*rDt;
-            }
-        }
-        else
-        {
-            const scalarField& nu = tnu();
-            const volVectorField gradP(fvc::grad(p));
-            forAll(cutCellList_, j)
-            {
-                const label celli = cutCellList_[j];
-                const scalar h = cbrt(mesh_.V()[celli]);
-                tp[cutPairIndex_[j]] = rhoFluid_*
-                (
-                    p[celli]*cutWall_[j]
-                  + nu[celli]
-                   *(
-                        mag(cutWall_[j])/max(cutDistance_[j], 0.05*h)
-                      + cutExtra_[j]
-                    )
-                   *(U[celli] - cutVelocity_[j])
-                    // the cell's momentum row holds its whole volume, so its
-                    // wall shear also balances the pressure gradient on its
-                    // solid part, (1 - kappa) V grad p, which is not a force
-                    // of the fluid on the solid (the pressure on the wall is
-                    // the first term): taken off. Immersed cylinder, 20 cells
-                    // across: c_D +0.79 % with it, +2.96 % without
-                  + (1 - cutFraction_[j])*mesh_.V()[celli]
-                   *gradP[celli]
-                );
-            }
+            const label celli = cutCellList_[j];
+            const label i = cutPairIndex_[j];
+            const scalar K = j < cutPenalty_.size() ? cutPenalty_[j] : 0;
+            tp[i] = rhoFluid_*K*(U[celli] - cutVelocity_[j]);
+            // (a cell whose centre is outside is a fluid cell, with no
+            // fictitious fluid)
+            fictitiousInertia[j] =
+                !cutInside_[j]
+              ? Zero
+              : rhoFluid_*(1 - cutFraction_[j])*mesh_.V()[celli]
+               *(cutVelocity_[j] - us0[i])*rDt;
         }
         // the wall force the fluid feels back (fluidSource), then the
         // solid's correction by the fictitious fluid's inertia (not a
@@ -1057,7 +817,7 @@ void Foam::fv::immersedForcing::fluidForce
     }
     vectorField& f = solid.externalForce();
     f = spread(t);
-    if (interpolation_)
+    if (cut_)
     {
         // the forcing cells' penalty reaction, to the nodes of their
         // nearest surface points (the fluid feels it back: cutForce_)
@@ -1065,22 +825,6 @@ void Foam::fv::immersedForcing::fluidForce
         cutForce_ += wallInterpolation_.addForce(U, rhoFluid_, fw);
         reduce(fw, sumOp<vectorField>());
         f += fw;
-    }
-    if (semiImplicit_)
-    {
-        // the solid's predictor felt the pressure force of p^n: correct
-        // it by the force of the increment p^{n+1} - p^n, with this
-        // step's covered cells and coefficients, as the pressure
-        // equation assumed (inertialProjection). (Correcting by what the
-        // predictor actually felt, with the last step's cells, diverged
-        // 20 times sooner on flap3D: the fluid's and the solid's views
-        // of the correction must agree.)
-        const vectorField Fp(boundary_.pressureForce(p, rhoFluid_));
-        correctSolid
-        (
-            spread(Fp - boundary_.pressureForce(p.oldTime(), rhoFluid_))
-        );
-        f += spread(Fp);
     }
     force_ = sum(f);
 
@@ -1119,118 +863,6 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedForcing::spread
     }
     reduce(f, sumOp<vectorField>());
     return tf;
-}
-
-
-void Foam::fv::immersedForcing::setInertia(const bool keepDraggedMass)
-{
-    // Each covered cell C hands its force to the nodes of its covering
-    // element by the weights w_Cn (sum_n w_Cn = 1); W_n = sum_C w_Cn (all
-    // ranks). In the staircase the whole cell moves with the solid: its
-    // fluid, V_C less the solid's share V_s,C = sum_n w_Cn V_n/W_n (V_n a
-    // node's share of the solid's volume), moves with the nodes it hands
-    // its force to: m_a,n = rho_f sum_C w_Cn (V_C - V_s,C)^+ (the solid
-    // divides by m_n + m_a,n). The cell's inertia in the pressure
-    // equation is what a force on it meets through the nodes: with the
-    // row sums of the mobility W M^-1 W^T (exact for a uniform push),
-    //     1/m_C = sum_n w_Cn W_n f_n/M_n,  M_n = m_n + m_a,n,
-    // f_n the fraction of the node's velocity components no constraint
-    // holds. A cell held still (f = 0) keeps 1e-3 of its free inertia:
-    // its force goes to held nodes only, and the pressure equation stays
-    // regular.
-    immersedSolid& solid = coupling_.solid();
-    const List<solidTet>& elements = solid.elements();
-    const immersedPairs& pairs = coupling_.pairs();
-    const labelUList& cells = pairs.coveredCells();
-    const labelUList& element = pairs.coveringElement();
-    const UList<immersedPairs::tetWeights>& w = pairs.weights();
-    const pointField& x = solid.points();
-    const label nNodes = solid.nPoints();
-    const scalarField& V = mesh_.V();
-
-    scalarField W(nNodes, Zero);
-    forAll(cells, i)
-    {
-        const solidTet& e = elements[element[i]];
-        for (label k = 0; k < 4; ++k)
-        {
-            W[e[k]] += w[i][k];
-        }
-    }
-    reduce(W, sumOp<scalarField>());
-
-    if (!keepDraggedMass)
-    {
-        // the nodes' shares of the solid's (current) volume
-        scalarField Vn(nNodes, Zero);
-        for (const solidTet& e : elements)
-        {
-            const scalar v = mag
-            (
-                (x[e[1]] - x[e[0]]) & ((x[e[2]] - x[e[0]])^(x[e[3]] - x[e[0]]))
-            )/6;
-            for (label k = 0; k < 4; ++k)
-            {
-                Vn[e[k]] += 0.25*v;
-            }
-        }
-        draggedMass_.setSize(nNodes);
-        draggedMass_ = Zero;
-        forAll(cells, i)
-        {
-            const solidTet& e = elements[element[i]];
-            scalar Vs = 0;
-            for (label k = 0; k < 4; ++k)
-            {
-                Vs += w[i][k]*Vn[e[k]]/max(W[e[k]], SMALL);
-            }
-            const scalar mf = rhoFluid_*max(V[cells[i]] - Vs, scalar(0));
-            for (label k = 0; k < 4; ++k)
-            {
-                draggedMass_[e[k]] += w[i][k]*mf;
-            }
-        }
-        reduce(draggedMass_, sumOp<scalarField>());
-    }
-    nodeMass_ = solid.nodeMass() + draggedMass_;
-    solid.setAddedMass(draggedMass_);
-
-    const vectorField free(solid.freeComponents());
-    scalarField inertia(cells.size(), Zero);
-    forAll(cells, i)
-    {
-        const solidTet& e = elements[element[i]];
-        scalar mob = 0;
-        scalar mobAll = 0;
-        for (label k = 0; k < 4; ++k)
-        {
-            const label n = e[k];
-            const scalar c = w[i][k]*W[n]/max(nodeMass_[n], VSMALL);
-            mob += c*cmptSum(free[n])/3;
-            mobAll += c;
-        }
-        inertia[i] = rhoFluid_*V[cells[i]]*max(mob, 1e-3*mobAll);
-    }
-    boundary_.setInertia(inertia);
-}
-
-
-void Foam::fv::immersedForcing::correctSolid(const vectorField& dF)
-{
-    // Fernandez, Gerbeau & Grandmont (2007): the pressure increment's
-    // force, over the mass that moves with each node, corrects the
-    // velocity of the step just taken (and the displacement by dt times
-    // it), as the projection corrects the covered cells' flux
-    immersedSolid& solid = coupling_.solid();
-    vectorField dv(dF.size(), Zero);
-    forAll(dv, i)
-    {
-        if (nodeMass_[i] > 0)
-        {
-            dv[i] = stepDeltaT_*dF[i]/nodeMass_[i];
-        }
-    }
-    solid.correctVelocity(dv, stepDeltaT_);
 }
 
 
@@ -1352,9 +984,6 @@ Foam::fv::immersedForcing::immersedForcing
     velocities0_(),
     stepDeltaT_(0),
     addedMassLength_(0),
-    semiImplicit_(false),
-    nodeMass_(),
-    draggedMass_(),
     maxIterations_(1),
     tolerance_(1e-3),
     relaxation_(0.5),
@@ -1376,8 +1005,6 @@ Foam::fv::immersedForcing::immersedForcing
     cutCells_(mesh),
     fractionCells_(mesh),
     cut_(false),
-    volumeFraction_(false),
-    interpolation_(false),
     wallInterpolation_(mesh),
     wallInterpolationCurrent_(false),
     cutForce_(Zero),
@@ -1470,41 +1097,10 @@ Foam::fv::immersedForcing::immersedForcing
     }
 
     // the added mass of the first step
-    if (semiImplicit_)
-    {
-        // a restart's (the one the uninterrupted run would use), else
-        // from this configuration
-        const fileName massFile(stateDir/"addedMass");
-        const bool restart = isFile(massFile);
-        if (restart)
-        {
-            IFstream is(massFile);
-            is >> draggedMass_;
-            if (draggedMass_.size() != coupling_.solid().nPoints())
-            {
-                FatalIOErrorInFunction(is)
-                    << massFile << " has " << draggedMass_.size()
-                    << " values for " << coupling_.solid().nPoints()
-                    << " solid nodes: it belongs to another solid mesh."
-                    << " Remove it (the mass is then recomputed) or"
-                    << " restart from a time written with this mesh"
-                    << exit(FatalIOError);
-            }
-        }
-        setInertia(restart);
-
-        Info<< type() << ' ' << name_ << ": semi-implicit coupling, fluid"
-            << " moving with the solid " << sum(draggedMass_) << " kg"
-            << " (solid " << sum(coupling_.solid().nodeMass()()) << " kg)"
-            << endl;
-    }
-    else
-    {
-        setAddedMass();
-        Info<< type() << ' ' << name_ << ": explicit coupling, added mass "
-            << sum(addedMass_) << " kg (addedMassLength "
-            << addedMassLength_ << " m)" << endl;
-    }
+    setAddedMass();
+    Info<< type() << ' ' << name_ << ": explicit coupling, added mass "
+        << sum(addedMass_) << " kg (addedMassLength "
+        << addedMassLength_ << " m)" << endl;
 
     // the solid's output at the start time
     coupling_.solid().write(true);
@@ -1576,17 +1172,13 @@ void Foam::fv::immersedForcing::constrain
         source[celli] *= scale;
     }
 
-    // Volume-fraction cut cells (Kajishima et al. 2001, Int J Heat Fluid
-    // Flow 22; Breugem 2012, J Comput Phys 231): the velocity of a cell a
-    // fraction alpha = 1 - kappa solid is the volume average of the
-    // fluid's and the solid's, u = (1 - alpha) u_f + alpha u_s. Implicit:
-    // the source K (u_s - u) with K = alpha/(1 - alpha) A turns the row
-    // (A u = H) into (A + K) u = H + K u_s, so u = (1 - alpha) H/A +
-    // alpha u_s, and the projection moves the cell by (1 - alpha) grad p/A
-    // (1/(A + K) in Steps II and III). Continuous in the surface's
-    // position: kappa goes from 1 (K = 0, a fluid cell) to kappaMin (K =
-    // 49 A, nearly u_s) where the cell joins the covered cells
-    if (volumeFraction_)
+    // Cut cells (Fadlun et al. 2000): a cut cell whose centre is inside
+    // is held at u_s (the wall beyond its centre) by the penalty K (u_s -
+    // u), K = (1 - kappaMin)/kappaMin A, implicit: the row (A u = H)
+    // becomes (A + K) u = H + K u_s, u = H/(A + K) + K u_s/(A + K), and
+    // the projection moves the cell by grad p/(A + K) (Steps II and III);
+    // one whose centre is outside is a forcing cell of wallInterpolation_
+    if (cut_)
     {
         // A: the row's whole diagonal, as the solver and A() see it, with
         // the boundary faces' internal coefficients (fvMatrix::D): on a
@@ -1601,65 +1193,12 @@ void Foam::fv::immersedForcing::constrain
         forAll(cutCellList_, j)
         {
             const label celli = cutCellList_[j];
-            const scalar kappa = min(max(cutFraction_[j], kappaMin), 1.0);
-            // cutCells interpolation: a cut cell whose centre is inside
-            // is held (the wall beyond its centre), one whose centre is
-            // outside is a forcing cell of wallInterpolation_ (below)
-            const scalar K =
-                interpolation_
-              ? (cutInside_[j] ? KmaxByA*A[celli] : 0)
-              : (1 - kappa)/kappa*A[celli];
+            const scalar K = cutInside_[j] ? KmaxByA*A[celli] : 0;
             cutPenalty_[j] = K;
             diag[celli] += K;
             source[celli] += K*cutVelocity_[j];
         }
-        if (interpolation_)
-        {
-            wallInterpolation_.constrain(eqn, A, KmaxByA);
-        }
-        return;
-    }
-
-    // Cut cells: the wall shear of the solid's surface inside them,
-    // nu |W| (u - u_s)/d (W the closed part of their faces, d the distance
-    // of the centre to the surface), implicit
-    if (cut_ && cutCellList_.size())
-    {
-        const singlePhaseTransportModel& transport =
-            mesh_.lookupObject<singlePhaseTransportModel>
-            (
-                "transportProperties"
-            );
-        const tmp<volScalarField> tnu(transport.nu());
-        forAll(cutCellList_, j)
-        {
-            const label celli = cutCellList_[j];
-            const scalar h = cbrt(mesh_.V()[celli]);
-            const scalar c = tnu()[celli]*
-            (
-                mag(cutWall_[j])/max(cutDistance_[j], 0.05*h)
-              + cutExtra_[j]
-            );
-            diag[celli] += c;
-            source[celli] += c*cutVelocity_[j];
-        }
-
-        // the viscous coupling of the faces between value points
-        // (updateBoundary), implicit: an added diffusion coefficient
-        // between the two cells
-        const labelUList& own = mesh_.owner();
-        const labelUList& nei = mesh_.neighbour();
-        scalarField& upper = eqn.upper();
-        scalarField& lower = eqn.lower();
-        forAll(cutFaceList_, k)
-        {
-            const label facei = cutFaceList_[k];
-            const scalar c = tnu()[own[facei]]*cutFaceCoeff_[k];
-            diag[own[facei]] += c;
-            diag[nei[facei]] += c;
-            upper[facei] -= c;
-            lower[facei] -= c;
-        }
+        wallInterpolation_.constrain(eqn, A, KmaxByA);
     }
 }
 
@@ -1976,10 +1515,7 @@ void Foam::fv::immersedForcing::endOfStep()
     const volVectorField& U =
         mesh_.lookupObject<volVectorField>(fieldNames_.first());
     const clockValue start(true);
-    if (!semiImplicit_)
-    {
-        setAddedMass();
-    }
+    setAddedMass();
     fluidForce(p, U);
     source_ = fluidSource(U);
     forceTime_ += double(start.elapsed());
@@ -2012,88 +1548,43 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         applied_.setSize(fieldNames_.size(), false);
         coeffs_.readEntry("rhoFluid", rhoFluid_);
         boundary_.setPressureName(coeffs_.getOrDefault<word>("p", "p"));
-        const word wall(coeffs_.getOrDefault<word>("wall", "ghost"));
-        if (wall != "ghost" && wall != "staircase")
+        ghostWall_ =
+            readEnumEntry
+            (
+                wallTypeNames,
+                "wall",
+                coeffs_,
+                wallType::ghost,
+                "fvOption " + name_
+            ) == wallType::ghost;
+        cut_ =
+            readEnumEntry
+            (
+                cutCellsTypeNames,
+                "cutCells",
+                coeffs_,
+                cutCellsType::no,
+                "fvOption " + name_
+            ) == cutCellsType::interpolation;
+        if (cut_)
         {
-            FatalIOErrorInFunction(coeffs_)
-                << "wall " << wall << " is not ghost or staircase"
-                << exit(FatalIOError);
-        }
-        ghostWall_ = (wall == "ghost");
-        const word cutCells
-        (
-            coeffs_.getOrDefault<word>("cutCells", "no")
-        );
-        interpolation_ = (cutCells == "interpolation");
-        volumeFraction_ = interpolation_ || (cutCells == "volumeFraction");
-        const Switch cutSwitch(cutCells, true);
-        if (!volumeFraction_ && !cutSwitch.valid())
-        {
-            FatalIOErrorInFunction(coeffs_)
-                << "cutCells " << cutCells << " is not no, yes,"
-                << " volumeFraction or interpolation" << exit(FatalIOError);
-        }
-        cut_ = volumeFraction_ || bool(cutSwitch);
-        if (volumeFraction_)
-        {
-            // the covered cells beside the volume-fraction cut cells hold
-            // u_s (the cut cells are the wall's layer: a ghost value
-            // extrapolated through them would count the wall twice)
+            // the covered cells beside the cut cells hold u_s (the cut
+            // cells are the wall's layer: a ghost value extrapolated
+            // through them would count the wall twice)
             if (coeffs_.found("wall") && ghostWall_)
             {
                 FatalIOErrorInFunction(coeffs_)
-                    << "wall ghost and cutCells " << cutCells << ": the"
-                    << " volume-fraction cut cells are the wall's layer;"
-                    << " remove the entry wall or set it to staircase"
-                    << exit(FatalIOError);
+                    << "wall ghost and cutCells interpolation: the cut"
+                    << " cells are the wall's layer; remove the entry wall"
+                    << " or set it to staircase" << exit(FatalIOError);
             }
             ghostWall_ = false;
         }
-        else if
-        (
-            cut_
-         && (Pstream::parRun() || coupling_.solid().isDeformable())
-        )
-        {
-            // On the deformable Turek-Hron FSI1 flag (N = 36) the tip
-            // drifted to -1.1 mm at 1.8 s (staircase -0.04 mm; reference
-            // steady +0.82) while one or two cells at its tail, whose
-            // centres lie within microns of the surface, were cut and
-            // their neighbours across the flag covered: the split is not
-            // continuous in the surface's position (src/fsiCoupling/
-            // README.md)
-            FatalIOErrorInFunction(coeffs_)
-                << "cutCells yes: only for a rigid solid in a serial run"
-                << " for now (experimental; deformable solids and parallel"
-                << " runs are not validated): remove the entry, set it to"
-                << " no, or use cutCells volumeFraction"
-                << exit(FatalIOError);
-        }
-        const bool deformable = coupling_.solid().isDeformable();
-        const word couplingType
-        (
-            coeffs_.getOrDefault<word>("coupling", "explicit")
-        );
-        if (couplingType != "semiImplicit" && couplingType != "explicit")
-        {
-            FatalIOErrorInFunction(coeffs_)
-                << "coupling " << couplingType << " is not semiImplicit or"
-                << " explicit" << exit(FatalIOError);
-        }
-        semiImplicit_ = deformable && couplingType == "semiImplicit";
         maxIterations_ = coeffs_.getOrDefault<label>("couplingIterations", 1);
         readAddedMass(coeffs_);
         tolerance_ = coeffs_.getOrDefault<scalar>("couplingTolerance", 1e-3);
         relaxation_ = coeffs_.getOrDefault<scalar>("couplingRelaxation", 0.5);
         reuse_ = coeffs_.getOrDefault<label>("couplingReuse", 4);
-        if (semiImplicit_ && maxIterations_ > 1)
-        {
-            FatalIOErrorInFunction(coeffs_)
-                << "couplingIterations " << maxIterations_ << " iterate the"
-                << " explicit coupling; with coupling semiImplicit remove"
-                << " the entry or set coupling explicit"
-                << exit(FatalIOError);
-        }
         if (maxIterations_ < 1 || tolerance_ <= 0 || relaxation_ <= 0)
         {
             FatalIOErrorInFunction(coeffs_)

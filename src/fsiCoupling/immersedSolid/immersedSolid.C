@@ -217,14 +217,6 @@ const Foam::labelList& Foam::immersedSolid::nodeSet
 }
 
 
-void Foam::immersedSolid::correctVelocity(const vectorField&, const scalar)
-{
-    FatalErrorInFunction
-        << "The immersed solid of type " << type() << " has no dynamics of"
-        << " its own: its velocity cannot be corrected" << exit(FatalError);
-}
-
-
 void Foam::immersedSolid::setState
 (
     const pointField& points,

@@ -574,34 +574,6 @@ Foam::immersedSolids::deformable::freeComponents() const
 }
 
 
-void Foam::immersedSolids::deformable::correctVelocity
-(
-    const vectorField& dv,
-    const scalar dt
-)
-{
-    std::vector<smoothedSolid::Vec3> d(dv.size());
-    forAll(dv, i)
-    {
-        d[i] = toVec3(dv[i]);
-    }
-    try
-    {
-        solid_->correctVelocity(d, dt);
-    }
-    catch (const smoothedSolid::Error& err)
-    {
-        FatalErrorInFunction
-            << "The immersed solid failed at time " << time_ << ": "
-            << err.what() << exit(FatalError);
-    }
-    // the mean velocity over the step moves with the displacement
-    const pointField x0(points_ - dt*velocities_);
-    fromSolid();
-    velocities_ = dt > 0 ? vectorField((points_ - x0)/dt) : velocities_;
-}
-
-
 bool Foam::immersedSolids::deformable::interactionForce
 (
     const scalar dt,
