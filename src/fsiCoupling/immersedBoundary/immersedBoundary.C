@@ -1767,7 +1767,12 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
     }
 
     // Coupled faces: U and nu across them, and for the wall point the
-    // fluid cell's p, centre and wall gradient g_F (all ranks take part)
+    // fluid cell's p, centre and wall gradient g_F (all ranks take part;
+    // none where no rank has such a face, as in a serial run)
+    if (!returnReduce(boundaryFaces_.size(), sumOp<label>()))
+    {
+        return tt;
+    }
     vectorField Unbr;
     scalarField nuNbr;
     syncTools::swapBoundaryCellList(mesh_, U.primitiveField(), Unbr);
