@@ -10,7 +10,6 @@
 #include "processorFvPatch.H"
 #include "constrainPressure.H"
 #include "adjustPhi.H"
-#include "immersedBoundary.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -64,6 +63,7 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
     ),
     laminarTransport_(U_, phi_),
     fvOptions_(fv::options::New(mesh)),
+    immersed_(fv::immersedMethod::all(fvOptions_)),
     pRefCell_(0),
     pRefValue_(0),
     cumulativeContErr_(0)
@@ -79,6 +79,10 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
 
     setRefCell(p_, control_.dict(), pRefCell_, pRefValue_);
     mesh_.setFluxRequired(p_.name());
+    for (fv::immersedMethod& m : immersed_)
+    {
+        m.setPressureReference(pRefCell_);
+    }
 
     if (!fvOptions_.optionList::size())
     {
@@ -127,6 +131,62 @@ Foam::cbsProjectionFluid::intermediateMomentum()
 }
 
 
+Foam::tmp<Foam::surfaceScalarField> Foam::cbsProjectionFluid::balance
+(
+    const volVectorField::Internal& fb,
+    const volScalarField& rAU,
+    const surfaceScalarField& rAUf,
+    volVectorField& HbyA
+)
+{
+    // A balanced body force (fv::immersedMethod::balancedForce, the
+    // carried leaflets' stress): handed to the face fluxes, where a static
+    // pressure jump balances it exactly, and to the cells by the
+    // reconstruction of the face balance (as buoyancy in
+    // buoyantPimpleFoam); not through H/A. The flux is the adjoint of the
+    // reconstruction (balancedForceFlux.H)
+    HbyA.primitiveFieldRef() -= rAU.primitiveField()*fb.field();
+
+    // the processor faces take the changed cells of the other side (the
+    // flux of HbyA on them uses the neighbour's value as received at the
+    // last evaluation: without this the two sides' fluxes differ by the
+    // force's part and mass is not conserved across ranks). Only these:
+    // HbyA.correctBoundaryConditions() would also evaluate the inlet and
+    // outlet patches, whose values constrainHbyA set (serial coarse valve:
+    // the inlet and outlet flows then differ by 4 %)
+    volVectorField::Boundary& HbyAbf = HbyA.boundaryFieldRef();
+    forAll(HbyAbf, patchi)
+    {
+        if (isA<processorFvPatch>(mesh_.boundary()[patchi]))
+        {
+            HbyAbf[patchi].initEvaluate(Pstream::defaultCommsType);
+        }
+    }
+    forAll(HbyAbf, patchi)
+    {
+        if (isA<processorFvPatch>(mesh_.boundary()[patchi]))
+        {
+            HbyAbf[patchi].evaluate(Pstream::defaultCommsType);
+        }
+    }
+    volVectorField f
+    (
+        IOobject("fBalanced", mesh_.time().timeName(), mesh_),
+        mesh_,
+        dimensionedVector(fb.dimensions(), Zero),
+        zeroGradientFvPatchVectorField::typeName
+    );
+    f.primitiveFieldRef() = fb.field();
+    f.correctBoundaryConditions();
+    if (!balancedFlux_.valid())
+    {
+        balancedFlux_.reset(new balancedForceFlux(mesh_));
+    }
+    // zero through the boundary: the walls take it
+    return rAUf*balancedFlux_->flux(f);
+}
+
+
 void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
 {
     const volScalarField rAU(1.0/UEqn.A());
@@ -136,55 +196,11 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     volVectorField HbyA(constrainHbyA(rAU*UEqn.H(), U_, p_));
     surfaceScalarField rAUf("rAUf", fvc::interpolate(rAU));
 
-    // A balanced body force (fv::immersedElasticForce, balancedForce yes):
-    // handed to the face fluxes, where a static pressure jump balances it
-    // exactly, and to the cells by the reconstruction of the face balance
-    // (as buoyancy in buoyantPimpleFoam); not through H/A. The flux is the
-    // adjoint of the reconstruction (balancedForceFlux.H)
-    const volVectorField::Internal* fb =
-        mesh_.findObject<volVectorField::Internal>("immersedBalancedForce");
+    const volVectorField::Internal* fb = balancedForce();
     tmp<surfaceScalarField> tphiF;
     if (fb)
     {
-        HbyA.primitiveFieldRef() -= rAU.primitiveField()*fb->field();
-        // the processor faces take the changed cells of the other side
-        // (the flux of HbyA on them uses the neighbour's value as received
-        // at the last evaluation: without this the two sides' fluxes differ
-        // by the force's part and mass is not conserved across ranks).
-        // Only these: HbyA.correctBoundaryConditions() would also evaluate
-        // the inlet and outlet patches, whose values constrainHbyA set
-        // (serial coarse valve: the inlet and outlet flows then differ by
-        // 4 %)
-        volVectorField::Boundary& HbyAbf = HbyA.boundaryFieldRef();
-        forAll(HbyAbf, patchi)
-        {
-            if (isA<processorFvPatch>(mesh_.boundary()[patchi]))
-            {
-                HbyAbf[patchi].initEvaluate(Pstream::defaultCommsType);
-            }
-        }
-        forAll(HbyAbf, patchi)
-        {
-            if (isA<processorFvPatch>(mesh_.boundary()[patchi]))
-            {
-                HbyAbf[patchi].evaluate(Pstream::defaultCommsType);
-            }
-        }
-        volVectorField f
-        (
-            IOobject("fBalanced", mesh_.time().timeName(), mesh_),
-            mesh_,
-            dimensionedVector(fb->dimensions(), Zero),
-            zeroGradientFvPatchVectorField::typeName
-        );
-        f.primitiveFieldRef() = fb->field();
-        f.correctBoundaryConditions();
-        if (!balancedFlux_.valid())
-        {
-            balancedFlux_.reset(new balancedForceFlux(mesh_));
-        }
-        // zero through the boundary: the walls take it
-        tphiF = rAUf*balancedFlux_->flux(f);
+        tphiF = balance(*fb, rAU, rAUf, HbyA);
     }
     surfaceScalarField phiHbyA
     (
@@ -197,15 +213,12 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
         phiHbyA += tphiF();
     }
 
-    // Immersed solid (fsiCoupling): its flux on the faces of the covered
-    // cells, no pressure flux through them (immersedBoundary.H)
-    const immersedBoundary* ib =
-        mesh_.findObject<immersedBoundary>(immersedBoundary::typeName);
-    if (ib)
+    // Immersed solids: the flux on the faces they hold and no pressure
+    // flux through them (fv::immersedMethod; the sharp method's covered
+    // cells, immersedBoundary.H)
+    for (const fv::immersedMethod& m : immersed_)
     {
-        // Step II's coefficient, zero on the faces of the covered cells
-        ib->constrainFlux(phiHbyA);
-        ib->constrainLaplacian(rAUf);
+        m.constrainFlux(phiHbyA, rAUf);
     }
 
     if (p_.needReference())
@@ -221,15 +234,15 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     {
         fvScalarMatrix pEqn
         (
-            (ib || fb)
+            immersed_.size()
           ? fvm::laplacian(rAUf, p_) == fvc::div(phiHbyA)
           : fvm::laplacian(rAU, p_) == fvc::div(phiHbyA)
         );
 
         pEqn.setReference(pRefCell_, pRefValue_);
-        if (ib)
+        for (const fv::immersedMethod& m : immersed_)
         {
-            ib->constrainPressure(pEqn, p_);
+            m.constrainPressure(pEqn, p_);
         }
         pEqn.solve(mesh_.solver(p_.select(control_.finalInnerIter())));
 
@@ -249,26 +262,81 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
 
     continuityErrors();
 
-    // Step III (paper Eq. 39): velocity correction. With an immersed solid
-    // the covered cells' pressure is set for output and grad p taken with
-    // the wall pressure, from one evaluation of the wall values
+    // Step III (paper Eq. 39): velocity correction. With a sharp immersed
+    // solid the covered cells' pressure is set for output and grad p taken
+    // with the wall pressure, from one evaluation of the wall values
     if (!fb)
     {
-        U_ = HbyA - rAU*(ib ? ib->correctPressure(p_) : fvc::grad(p_));
+        U_ = HbyA - rAU*correctedPressureGradient();
     }
     U_.correctBoundaryConditions();
     fvOptions_.correct(U_);
 }
 
 
+const Foam::volVectorField::Internal*
+Foam::cbsProjectionFluid::balancedForce() const
+{
+    const volVectorField::Internal* fb = nullptr;
+    for (const fv::immersedMethod& m : immersed_)
+    {
+        const volVectorField::Internal* f = m.balancedForce();
+        if (f && fb)
+        {
+            FatalErrorInFunction
+                << "Two fvOptions give a balanced force (" << m.name()
+                << " among them): one carried immersed solid per mesh is"
+                << " supported; put all its parts in one constant/"
+                << "solidProperties mesh" << exit(FatalError);
+        }
+        fb = f ? f : fb;
+    }
+    return fb;
+}
+
+
 Foam::tmp<Foam::volVectorField>
 Foam::cbsProjectionFluid::pressureGradient() const
 {
-    const immersedBoundary* ib =
-        mesh_.findObject<immersedBoundary>(immersedBoundary::typeName);
-    if (ib)
+    // grad p of Step I: the immersed method's (with its wall pressure),
+    // else Gauss
+    tmp<volVectorField> tgradp;
+    for (const fv::immersedMethod& m : immersed_)
     {
-        return ib->grad(p_);
+        tmp<volVectorField> g(m.pressureGradient(p_));
+        if (g.valid() && tgradp.valid())
+        {
+            FatalErrorInFunction
+                << "Two fvOptions hold the wall pressure (" << m.name()
+                << " among them): one sharp immersed solid per mesh is"
+                << " supported; put all its parts in one constant/"
+                << "solidProperties mesh" << exit(FatalError);
+        }
+        if (g.valid())
+        {
+            tgradp = g;
+        }
+    }
+    if (tgradp.valid())
+    {
+        return tgradp;
+    }
+    return fvc::grad(p_);
+}
+
+
+Foam::tmp<Foam::volVectorField>
+Foam::cbsProjectionFluid::correctedPressureGradient()
+{
+    // grad p of Step III: as pressureGradient(), the immersed method also
+    // setting the pressure of the cells out of the pressure equation
+    for (const fv::immersedMethod& m : immersed_)
+    {
+        tmp<volVectorField> g(m.correctPressure(p_));
+        if (g.valid())
+        {
+            return g;
+        }
     }
     return fvc::grad(p_);
 }

@@ -72,6 +72,7 @@ Foam::immersedBoundary::immersedBoundary
     ramps_(),
     updated_(false),
     pName_("p"),
+    refCell_(Pstream::master() ? 0 : -1),
     nbrCovered_(mesh.nBoundaryFaces(), false),
     nbrVelocity_(mesh.nBoundaryFaces(), Zero),
     internalFaces_(),
@@ -595,7 +596,7 @@ void Foam::immersedBoundary::findEnclosedFluid()
     // Fluid cells connected (through faces between fluid cells) to a cell
     // where the pressure is fixed: a boundary face whose p condition
     // fixes the value, or, with none in the domain, the reference cell
-    // (CBS pRefCell, on the master). Breadth-first fill over the cell-cell
+    // (the solver's, setPressureReference). Breadth-first fill over the cell-cell
     // addressing of the internal faces (primitiveMesh::cellCells), repeated
     // across processor faces until no rank changes.
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
@@ -651,12 +652,9 @@ void Foam::immersedBoundary::findEnclosedFluid()
     }
     reduce(anyFixed, orOp<bool>());
     enclosedFound_ = returnReduce(pPtr != nullptr, andOp<bool>());
-    if (!anyFixed && Pstream::master() && nCells)
+    if (!anyFixed && refCell_ >= 0 && nCells)
     {
-        const label refCell =
-            mesh_.solutionDict().subOrEmptyDict("CBS")
-           .getOrDefault<label>("pRefCell", 0);
-        seed(min(max(refCell, 0), nCells - 1));
+        seed(min(refCell_, nCells - 1));
     }
 
     while (true)
@@ -771,9 +769,6 @@ bool Foam::immersedBoundary::updateEnclosedFluid
 
     // A cell whose group is not local (a coupled face) or that seeds the
     // fill (a face on a fixed-value pressure boundary)
-    const label refCell =
-        mesh_.solutionDict().subOrEmptyDict("CBS")
-       .getOrDefault<label>("pRefCell", 0);
     auto special = [&](const label celli)
     {
         for (const label facei : cells[celli])
@@ -791,7 +786,7 @@ bool Foam::immersedBoundary::updateEnclosedFluid
                 }
             }
         }
-        return celli == refCell || refCells_.found(celli);
+        return celli == refCell_ || refCells_.found(celli);
     };
 
     // (a) newly covered groups

@@ -685,7 +685,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     const fvMesh& mesh
 )
 :
-    option(name, modelType, dict, mesh),
+    immersedMethod(name, modelType, dict, mesh),
     solidPtr_(immersedSolid::New(mesh.time())),
     solid_(dynamic_cast<immersedSolids::deformable*>(solidPtr_.get())),
     rhoFluid_(0),
@@ -905,12 +905,12 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
 }
 
 
-void Foam::fv::immersedElasticForce::updateForce()
+bool Foam::fv::immersedElasticForce::updateForce()
 {
     const Time& runTime = mesh_.time();
     if (updateIndex_ == runTime.timeIndex())
     {
-        return;
+        return true;
     }
     updateIndex_ = runTime.timeIndex();
     const scalar dt = runTime.deltaTValue();
@@ -964,6 +964,8 @@ void Foam::fv::immersedElasticForce::updateForce()
     }
     Info<< nl << "    time: solid " << solidTime_ << " s, search "
         << searchTime_ << " s, force " << forceTime_ << " s" << endl;
+
+    return true;
 }
 
 

@@ -87,7 +87,6 @@ void Foam::fv::immersedForcing::advanceSolid()
             storeFluid();
         }
     }
-    passes_ = 0;
     searchIndex_ = -1;
 
     const scalar dt = runTime.value() - solid.time();
@@ -947,7 +946,7 @@ Foam::fv::immersedForcing::immersedForcing
     const fvMesh& mesh
 )
 :
-    option(name, modelType, dict, mesh),
+    immersedMethod(name, modelType, dict, mesh),
     coupling_(mesh),
     coverage_
     (
@@ -1018,7 +1017,6 @@ Foam::fv::immersedForcing::immersedForcing
     transferTime0_(0),
     stepIndex_(-1),
     stepSolved_(false),
-    passes_(0),
     diagnostics_(),
     unconstrained_(),
     coveredGradP_(Zero),
@@ -1226,21 +1224,52 @@ Foam::vector Foam::fv::immersedForcing::fluidSource
 
 void Foam::fv::immersedForcing::correct(volVectorField&)
 {
-    // The force, source and slip are evaluated once per time step, from
-    // the step's final U and p: after the last projection pass of the CBS
-    // controls (momentum predictor + nCorrectors passes call correct()),
-    // else when the next step starts
+    // A projection pass has run: the force, source and slip of the step
+    // are evaluated once, from its final U and p, by the solver's explicit
+    // end of the step (updateForce), else when the next step starts
     stepSolved_ = true;
     solidTime_ = mesh_.time().value();   // the step's time, for its line
-    ++passes_;
-    const dictionary& cbs = mesh_.solutionDict().subOrEmptyDict("CBS");
-    const label expected =
-        cbs.getOrDefault<label>("nCorrectors", 1)
-      + (cbs.getOrDefault<bool>("momentumPredictor", true) ? 1 : 0);
-    if (passes_ == expected)
-    {
-        endOfStep();
-    }
+}
+
+
+void Foam::fv::immersedForcing::setPressureReference(const label celli)
+{
+    boundary_.setPressureReference(celli);
+}
+
+
+void Foam::fv::immersedForcing::constrainFlux
+(
+    surfaceScalarField& phiHbyA,
+    surfaceScalarField& rAUf
+) const
+{
+    boundary_.constrainFlux(phiHbyA);
+    boundary_.constrainLaplacian(rAUf);
+}
+
+
+void Foam::fv::immersedForcing::constrainPressure
+(
+    fvScalarMatrix& pEqn,
+    const volScalarField& p
+) const
+{
+    boundary_.constrainPressure(pEqn, p);
+}
+
+
+Foam::tmp<Foam::volVectorField>
+Foam::fv::immersedForcing::pressureGradient(const volScalarField& p) const
+{
+    return boundary_.grad(p);
+}
+
+
+Foam::tmp<Foam::volVectorField>
+Foam::fv::immersedForcing::correctPressure(volScalarField& p) const
+{
+    return boundary_.correctPressure(p);
 }
 
 

@@ -3,8 +3,6 @@
 \*---------------------------------------------------------------------------*/
 
 #include "immersedFsi.H"
-#include "immersedForcing.H"
-#include "immersedElasticForce.H"
 #include "fvOptions.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
@@ -12,25 +10,8 @@
 Foam::immersedFsi::immersedFsi(const fvMesh& mesh)
 :
     mesh_(mesh),
-    forcing_(),
-    carried_()
-{
-    fv::optionList& opts = fv::options::New(mesh);
-    forAll(opts, i)
-    {
-        fv::immersedForcing* f = dynamic_cast<fv::immersedForcing*>(&opts[i]);
-        if (f)
-        {
-            forcing_.append(f);
-        }
-        fv::immersedElasticForce* e =
-            dynamic_cast<fv::immersedElasticForce*>(&opts[i]);
-        if (e)
-        {
-            carried_.append(e);
-        }
-    }
-}
+    methods_(fv::immersedMethod::all(fv::options::New(mesh)))
+{}
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
@@ -45,9 +26,9 @@ void Foam::immersedFsi::adjustDeltaT() const
     }
     const scalar maxCo = controlDict.get<scalar>("maxCo");
     scalar dt = runTime.deltaTValue();
-    for (const fv::immersedForcing* f : forcing_)
+    for (const fv::immersedMethod& m : methods_)
     {
-        dt = min(dt, f->maxDeltaT(maxCo));
+        dt = min(dt, m.maxDeltaT(maxCo));
     }
     if (dt < runTime.deltaTValue())
     {
@@ -58,48 +39,40 @@ void Foam::immersedFsi::adjustDeltaT() const
 }
 
 
-void Foam::immersedFsi::advanceSolid() const
+void Foam::immersedFsi::advanceSolid()
 {
-    for (fv::immersedForcing* f : forcing_)
+    for (fv::immersedMethod& m : methods_)
     {
-        f->advanceSolid();
+        m.advanceSolid();
     }
 }
 
 
-void Foam::immersedFsi::searchPairs() const
+void Foam::immersedFsi::searchPairs()
 {
-    for (fv::immersedForcing* f : forcing_)
+    for (fv::immersedMethod& m : methods_)
     {
-        f->searchPairs();
+        m.searchPairs();
     }
 }
 
 
-bool Foam::immersedFsi::updateForce() const
+bool Foam::immersedFsi::updateForce()
 {
     bool converged = true;
-    for (fv::immersedForcing* f : forcing_)
+    for (fv::immersedMethod& m : methods_)
     {
-        converged = f->updateForce() && converged;
-    }
-    for (fv::immersedElasticForce* e : carried_)
-    {
-        e->updateForce();
+        converged = m.updateForce() && converged;
     }
     return converged;
 }
 
 
-void Foam::immersedFsi::write() const
+void Foam::immersedFsi::write()
 {
-    for (fv::immersedForcing* f : forcing_)
+    for (fv::immersedMethod& m : methods_)
     {
-        f->write();
-    }
-    for (fv::immersedElasticForce* e : carried_)
-    {
-        e->write();
+        m.write();
     }
 }
 

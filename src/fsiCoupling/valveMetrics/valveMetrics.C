@@ -3,8 +3,8 @@
 \*---------------------------------------------------------------------------*/
 
 #include "valveMetrics.H"
-#include "immersedElasticForce.H"
-#include "immersedForcing.H"
+#include "immersedMethod.H"
+#include "immersedSolid.H"
 #include "deformableSolid.H"
 #include "fvOptions.H"
 #include "volFields.H"
@@ -67,24 +67,17 @@ Foam::functionObjects::valveMetrics::findSolid(const dictionary& dict) const
         {
             continue;
         }
-        const fv::immersedElasticForce* ef =
-            dynamic_cast<const fv::immersedElasticForce*>(&opt);
-        if (ef)
+        const fv::immersedMethod* m =
+            dynamic_cast<const fv::immersedMethod*>(&opt);
+        if (m)
         {
-            return ef->solid();
-        }
-        const fv::immersedForcing* f =
-            dynamic_cast<const fv::immersedForcing*>(&opt);
-        if (f)
-        {
-            return f->coupling().solid();
+            return m->solid();
         }
     }
     FatalIOErrorInFunction(dict)
         << "function object " << name() << " (type " << typeName
-        << ") in " << dict.name() << ": no fvOption of type "
-        << fv::immersedElasticForce::typeName << " or "
-        << fv::immersedForcing::typeName;
+        << ") in " << dict.name() << ": no immersed solid (an fvOption of"
+        << " type immersedElasticForce or immersedForcing)";
     if (optionName_.size())
     {
         FatalIOError<< " named " << optionName_ << " (entry fvOption)";
