@@ -2,7 +2,7 @@
 """The aortic valve tutorial's numbers beside the paper's (README.md,
 "Results"), from the valve metrics written during the run:
 postProcessing/valveMetrics/<startTime>/valveMetrics.dat
-(src/fsiCoupling/valveMetrics; a restarted run's files are joined).
+(src/fsiCoupling/functionObjects/valveMetrics; a restarted run's files are joined).
 
 Opening (forward pressure, dp > 0):
   plateau            the largest orifice area (GOA) while dp > 0

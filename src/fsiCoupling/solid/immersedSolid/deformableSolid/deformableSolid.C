@@ -66,6 +66,23 @@ std::array<bool, 3> componentMask
     return m;
 }
 
+// Run the solid library's own checks, reporting an error against the
+// entry key of dictionary d
+template<class Action>
+void guarded(const dictionary& d, const word& key, Action f)
+{
+    try
+    {
+        f();
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalIOErrorInFunction(d)
+            << "Entry '" << key << "' in " << d.name() << ": "
+            << err.what() << exit(FatalIOError);
+    }
+}
+
 // FatalIOError for a keyword outside 'allowed'
 void checkKeys(const dictionary& dict, const wordList& allowed)
 {
@@ -192,46 +209,9 @@ void Foam::immersedSolids::deformable::fromSolid()
 }
 
 
-// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
-
-Foam::immersedSolids::deformable::deformable
-(
-    const Time& runTime,
-    const IOdictionary& dict
-)
-:
-    immersedSolid(runTime, dict),
-    lastSubSteps_(0),
-    stored_(),
-    storedVelocities_(),
-    storedTime_(0)
+smoothedSolid::SolidOptions
+Foam::immersedSolids::deformable::readOptions() const
 {
-    checkKeywords
-    (
-        dict_,
-        {
-            "type", "mesh", "formulation", "material", "fibres", "fixed",
-            "prescribedMotion", "safety", "damping", "stiffnessDamping",
-            "bodyForce", "contact",
-            "contactSurfaces", "output"
-        }
-    );
-
-    // Run the solid library's own checks, reporting against the entry
-    auto guarded = [&](const dictionary& d, const word& key, auto f)
-    {
-        try
-        {
-            f();
-        }
-        catch (const smoothedSolid::Error& err)
-        {
-            FatalIOErrorInFunction(d)
-                << "Entry '" << key << "' in " << d.name() << ": "
-                << err.what() << exit(FatalIOError);
-        }
-    };
-
     smoothedSolid::SolidOptions opt;
     {
         const word f(dict_.getOrDefault<word>("formulation", "selective"));
@@ -255,23 +235,13 @@ Foam::immersedSolids::deformable::deformable
             << exit(FatalIOError);
     }
 
-    const dictionary& matDict = dict_.subDict("material");
-    std::shared_ptr<smoothedSolid::Material> material = makeMaterial(matDict);
+    return opt;
+}
 
-    guarded(dict_, "mesh", [&]
-    {
-        solid_.reset
-        (
-            new smoothedSolid::ExplicitSolid
-            (
-                smoothedSolid::TetMesh::fromGmsh(meshFile()),
-                material,
-                opt
-            )
-        );
-    });
+
+void Foam::immersedSolids::deformable::readFibres()
+{
     smoothedSolid::ExplicitSolid& s = *solid_;
-
     // Fibres
     if (dict_.found("fibres"))
     {
@@ -323,7 +293,7 @@ Foam::immersedSolids::deformable::deformable
             name.expand();
             if (!name.isAbsolute())
             {
-                name = runTime.globalPath()/name;
+                name = runTime_.globalPath()/name;
             }
             guarded(f, "fibres", [&]
             {
@@ -347,6 +317,12 @@ Foam::immersedSolids::deformable::deformable
             << exit(FatalIOError);
     }
 
+}
+
+
+void Foam::immersedSolids::deformable::readConstraints()
+{
+    smoothedSolid::ExplicitSolid& s = *solid_;
     // Fixed node sets
     if (dict_.found("fixed"))
     {
@@ -389,7 +365,12 @@ Foam::immersedSolids::deformable::deformable
             });
         }
     }
+}
 
+
+void Foam::immersedSolids::deformable::readLoadsAndContact()
+{
+    smoothedSolid::ExplicitSolid& s = *solid_;
     if (dict_.found("bodyForce"))
     {
         s.setBodyForce(toVec3(dict_.get<vector>("bodyForce")));
@@ -421,7 +402,7 @@ Foam::immersedSolids::deformable::deformable
             f.expand();
             if (!f.isAbsolute())
             {
-                f = runTime.globalPath()/f;
+                f = runTime_.globalPath()/f;
             }
             const bool flip = d.getOrDefault<Switch>("flip", false);
             guarded(cs, e.keyword(), [&]
@@ -430,7 +411,11 @@ Foam::immersedSolids::deformable::deformable
             });
         }
     }
+}
 
+
+void Foam::immersedSolids::deformable::readOutput()
+{
     if (dict_.found("output"))
     {
         const dictionary& o = dict_.subDict("output");
@@ -438,7 +423,7 @@ Foam::immersedSolids::deformable::deformable
         fileName dir(o.getOrDefault<fileName>("directory", "VTK/solid"));
         if (!dir.isAbsolute())
         {
-            dir = runTime.globalPath()/dir;
+            dir = runTime_.globalPath()/dir;
         }
         guarded(o, "directory", [&]
         {
@@ -447,10 +432,59 @@ Foam::immersedSolids::deformable::deformable
             // from a run that went further, are dropped)
             if (Pstream::master())
             {
-                vtu_->resume(runTime.value());
+                vtu_->resume(runTime_.value());
             }
         });
     }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::immersedSolids::deformable::deformable
+(
+    const Time& runTime,
+    const IOdictionary& dict
+)
+:
+    immersedSolid(runTime, dict),
+    lastSubSteps_(0),
+    stored_(),
+    storedVelocities_(),
+    storedTime_(0)
+{
+    checkKeywords
+    (
+        dict_,
+        {
+            "type", "mesh", "formulation", "material", "fibres", "fixed",
+            "prescribedMotion", "safety", "damping", "stiffnessDamping",
+            "bodyForce", "contact",
+            "contactSurfaces", "output"
+        }
+    );
+
+    const smoothedSolid::SolidOptions opt(readOptions());
+    const dictionary& matDict = dict_.subDict("material");
+    std::shared_ptr<smoothedSolid::Material> material = makeMaterial(matDict);
+
+    guarded(dict_, "mesh", [&]
+    {
+        solid_.reset
+        (
+            new smoothedSolid::ExplicitSolid
+            (
+                smoothedSolid::TetMesh::fromGmsh(meshFile()),
+                material,
+                opt
+            )
+        );
+    });
+
+    readFibres();
+    readConstraints();
+    readLoadsAndContact();
+    readOutput();
 
     fromSolid();
 }
@@ -653,12 +687,6 @@ void Foam::immersedSolids::deformable::write(const bool force) const
                 << err.what() << exit(FatalError);
         }
     }
-}
-
-
-void Foam::immersedSolids::deformable::setAddedMass(const scalarField& m)
-{
-    solid_->setAddedMass(std::vector<double>(m.begin(), m.end()));
 }
 
 

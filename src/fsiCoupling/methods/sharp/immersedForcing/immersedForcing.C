@@ -4,6 +4,7 @@
 
 #include "immersedForcing.H"
 #include "readEnumEntry.H"
+#include "checkRemovedEntries.H"
 #include "scalarMatrices.H"
 #include "fvMatrices.H"
 #include "singlePhaseTransportModel.H"
@@ -49,6 +50,74 @@ void Foam::fv::immersedForcing::update()
 }
 
 
+void Foam::fv::immersedForcing::retryHalved
+(
+    const scalar dt,
+    string& why
+)
+{
+    const Time& runTime = mesh_.time();
+    immersedSolid& solid = coupling_.solid();
+    // A coupling iteration's update broke the solid (an inverted
+    // element: Turek-Hron FSI2 at 1.47 s, residual 0.09 updated from
+    // the columns of the last steps, before the remainder's
+    // relaxation in updateForce()): back along the update from the
+    // last iterate x_k, halving it until the solid advances, the
+    // columns dropped. Still failing at 1/1024 of it, the solid has
+    // blown up: stop (the last written time is kept).
+    WarningInFunction
+        << "Coupling iteration " << scheme_->iteration() + 1 << " at t = "
+        << runTime.value() << ": the solid failed under the updated"
+        << " force (" << why.c_str() << "); the update is halved"
+        << " until it advances and the quasi-Newton columns are"
+        << " dropped" << endl;
+    scheme_->dropHistory();
+    const vectorField x(scheme_->lastIterate());
+    const vectorField update(guess_ - x);
+    scalar factor = 1;
+    bool advanced = false;
+    for (label j = 0; j < 10 && !advanced; ++j)
+    {
+        factor /= 2;
+        solid.restoreState();
+        guess_ = x + factor*update;
+        solid.externalForce() = guess_;
+        advanced = solid.tryAdvance(dt, why);
+        Info<< type() << ' ' << name_ << ": update times " << factor
+            << (advanced ? ": the solid advanced" : ": failed") << endl;
+    }
+    if (!advanced)
+    {
+        FatalErrorInFunction
+            << "The immersed solid failed at time " << solid.time()
+            << " in coupling iteration " << scheme_->iteration() + 1
+            << ", also with the update cut to " << factor << ": "
+            << why.c_str() << exit(FatalError);
+    }
+}
+
+
+void Foam::fv::immersedForcing::reportFastestNode() const
+{
+    const immersedSolid& solid = coupling_.solid();
+    const vectorField& v = solid.velocities();
+    label imax = 0;
+    forAll(v, i)
+    {
+        if (magSqr(v[i]) > magSqr(v[imax]))
+        {
+            imax = i;
+        }
+    }
+    Info<< "immersedForcing: solid max |v| " << (v.size() ? mag(v[imax]) : 0)
+        << " at node " << imax << " X "
+        << (v.size() ? solid.points0()[imax] : Zero)
+        << ", |F| there " << mag(solid.externalForce()[imax])
+        << ", max |F| " << max(mag(solid.externalForce()))
+        << endl;
+}
+
+
 void Foam::fv::immersedForcing::advanceSolid()
 {
     const Time& runTime = mesh_.time();
@@ -62,7 +131,7 @@ void Foam::fv::immersedForcing::advanceSolid()
         // the next coupling iteration of this step: from the step's start
         // with the relaxed force
         redo_ = false;
-        ++iteration_;
+        scheme_->nextIteration();
         solid.restoreState();
         solid.externalForce() = guess_;
     }
@@ -77,10 +146,9 @@ void Foam::fv::immersedForcing::advanceSolid()
         forceTime_ = 0;
         wallTime_ = 0;
         advanceTime_ = 0;
-        iteration_ = 0;
-        residual_ = 0;
+        scheme_->startStep();
         velocities0_ = solid.velocities();
-        if (maxIterations_ > 1)
+        if (scheme_->iterates())
         {
             solid.storeState();
             guess_ = solid.externalForce();
@@ -95,69 +163,18 @@ void Foam::fv::immersedForcing::advanceSolid()
     string why;
     if (dt > 0 && !solid.tryAdvance(dt, why))
     {
-        if (iteration_ == 0)
+        if (scheme_->iteration() == 0)
         {
             FatalErrorInFunction
                 << "The immersed solid failed at time " << solid.time()
                 << ": " << why.c_str() << exit(FatalError);
         }
-        // A coupling iteration's update broke the solid (an inverted
-        // element: Turek-Hron FSI2 at 1.47 s, residual 0.09 updated from
-        // the columns of the last steps, before the remainder's
-        // relaxation in updateForce()): back along the update from the
-        // last iterate x_k, halving it until the solid advances, the
-        // columns dropped. Still failing at 1/1024 of it, the solid has
-        // blown up: stop (the last written time is kept).
-        WarningInFunction
-            << "Coupling iteration " << iteration_ + 1 << " at t = "
-            << runTime.value() << ": the solid failed under the updated"
-            << " force (" << why.c_str() << "); the update is halved"
-            << " until it advances and the quasi-Newton columns are"
-            << " dropped" << endl;
-        Vcols_.clear();
-        Wcols_.clear();
-        stepCols_.clear();
-        const vectorField x(previousOutput_ - previousResidual_);
-        const vectorField update(guess_ - x);
-        scalar factor = 1;
-        bool advanced = false;
-        for (label j = 0; j < 10 && !advanced; ++j)
-        {
-            factor /= 2;
-            solid.restoreState();
-            guess_ = x + factor*update;
-            solid.externalForce() = guess_;
-            advanced = solid.tryAdvance(dt, why);
-            Info<< type() << ' ' << name_ << ": update times " << factor
-                << (advanced ? ": the solid advanced" : ": failed") << endl;
-        }
-        if (!advanced)
-        {
-            FatalErrorInFunction
-                << "The immersed solid failed at time " << solid.time()
-                << " in coupling iteration " << iteration_ + 1
-                << ", also with the update cut to " << factor << ": "
-                << why.c_str() << exit(FatalError);
-        }
+        retryHalved(dt, why);
     }
     advanceTime_ += double(start.elapsed());
     if (debug)
     {
-        const vectorField& v = solid.velocities();
-        label imax = 0;
-        forAll(v, i)
-        {
-            if (magSqr(v[i]) > magSqr(v[imax]))
-            {
-                imax = i;
-            }
-        }
-        Info<< "immersedForcing: solid max |v| " << (v.size() ? mag(v[imax]) : 0)
-            << " at node " << imax << " X "
-            << (v.size() ? solid.points0()[imax] : Zero)
-            << ", |F| there " << mag(solid.externalForce()[imax])
-            << ", max |F| " << max(mag(solid.externalForce()))
-            << endl;
+        reportFastestNode();
     }
 }
 
@@ -181,7 +198,7 @@ void Foam::fv::immersedForcing::searchPairs()
     // IQN-ILS residual stalled at 0.4-0.9 on the soft flap; with the
     // pairs held it falls below 1e-3 in 5 to 11 iterations on the
     // Turek-Hron flag).
-    if (iteration_ == 0)
+    if (scheme_->iteration() == 0)
     {
         coupling_.updatePairs();
     }
@@ -236,64 +253,6 @@ void Foam::fv::immersedForcing::searchPairs()
 }
 
 
-void Foam::fv::immersedForcing::readAddedMass(const dictionary& dict)
-{
-    const immersedSolid& solid = coupling_.solid();
-    addedMassLength_ = 0;
-    if (!solid.isDeformable())
-    {
-        return;
-    }
-    // Iterated to convergence the solid must step alone: an added mass in
-    // its sub-steps is a lagged inertia there (couplingModel.py: 1.49 per
-    // step), so with couplingIterations the default is none
-    const boundBox bb(solid.points0(), false);
-    addedMassLength_ = dict.getOrDefault<scalar>
-    (
-        "addedMassLength",
-        maxIterations_ > 1 ? 0 : 0.5*cmptMax(bb.span())
-    );
-    if (addedMassLength_ < 0)
-    {
-        FatalIOErrorInFunction(dict)
-            << "addedMassLength " << addedMassLength_ << " is negative: give"
-            << " a length [m] (0 switches the stabilisation off)"
-            << exit(FatalIOError);
-    }
-}
-
-
-void Foam::fv::immersedForcing::setAddedMass()
-{
-    immersedSolid& solid = coupling_.solid();
-    if (!solid.isDeformable() || addedMassLength_ <= 0)
-    {
-        return;
-    }
-    // rho_f l times each covered cell's immersed face area, spread to the
-    // solid nodes by the weights that spread its traction (the nodes that
-    // take a cell's force take its added mass), summed over the ranks
-    const scalarField A(boundary_.immersedArea());
-    const List<solidTet>& elements = solid.elements();
-    const immersedPairs& pairs = coupling_.pairs();
-    const labelUList& element = pairs.coveringElement();
-    const UList<immersedPairs::tetWeights>& w = pairs.weights();
-    addedMass_.setSize(solid.points().size());
-    addedMass_ = Zero;
-    forAll(A, i)
-    {
-        const solidTet& e = elements[element[i]];
-        for (label k = 0; k < 4; ++k)
-        {
-            addedMass_[e[k]] += w[i][k]*A[i];
-        }
-    }
-    reduce(addedMass_, sumOp<scalarField>());
-    addedMass_ *= rhoFluid_*addedMassLength_;
-    solid.setAddedMass(addedMass_);
-}
-
-
 Foam::scalar Foam::fv::immersedForcing::maxDeltaT(const scalar maxCo) const
 {
     const immersedSolid& solid = coupling_.solid();
@@ -345,11 +304,97 @@ void Foam::fv::immersedForcing::write()
     const fileName dir(runTime.timePath()/"uniform"/"immersedSolid");
     coupling_.solid().writeState(dir);
     boundary_.writeRamps(dir/"coverRamps");
-    if (maxIterations_ > 1)
-    {
-        writeColumns(dir/"couplingColumns");
-    }
+    scheme_->writeState(dir);
     coupling_.solid().write();
+}
+
+
+void Foam::fv::immersedForcing::splitCutCells
+(
+    const labelList& covered,
+    const scalarField& fraction
+)
+{
+    // A covered cell with some fluid in it (more than kappaMin of its
+    // volume) beside a covered cell with at most kappaMin fluid is a cut
+    // cell: the solid is thick there (a thin solid, with no cell it
+    // fills, keeps its staircase and stays tight). Whether its centre is
+    // inside or outside does not decide: the blockage of a cut cell
+    // follows the surface from a fluid fraction of kappaMin to 1, and a
+    // cell changes status only at the ends of that range or where its
+    // last full neighbour stops being full. (The first cut
+    // cells, centre outside only, changed status where the surface
+    // crossed a centre, half full: on the Turek-Hron flag the round-off
+    // of a centre on the surface made one corner of its tail cut and the
+    // other covered, lift +54 %, and the deformable flag's tail drifted.)
+    // The split is made in a step's first coupling iteration and held in
+    // its later ones, as the pairs are (searchPairs), with the fractions
+    // (above).
+    const scalar kappaMin = 0.02;
+    // per cell: 0 not covered, 1 covered and full (fluid fraction at
+    // most kappaMin), 2 covered with some fluid; the neighbours'
+    // across processor faces too (swapBoundaryCellList), so that the
+    // split of a decomposed run is the serial one
+    labelList state(mesh_.nCells(), 0);
+    forAll(covered, i)
+    {
+        state[covered[i]] = fraction[i] <= kappaMin ? 1 : 2;
+    }
+    isCut_.setSize(covered.size());
+    isCut_ = false;
+    {
+        labelList nbrState;
+        syncTools::swapBoundaryCellList(mesh_, state, nbrState);
+        forAll(covered, i)
+        {
+            isCut_[i] =
+                state[covered[i]] == 2
+             && neighbourHas(covered[i], state, nbrState, 1);
+        }
+    }
+    // and layer after layer: a covered cell with some fluid beside a
+    // cut cell, until none is left. Where a sloped surface enters a
+    // new row of cells, the cell it first touches (nearly all fluid)
+    // lies beside a cell the surface has not yet filled, and covered
+    // whole it puts the wall
+    // on its faces: on the deformable Turek-Hron flag (N = 44) one
+    // cell at the tail's upper edge was covered and uncovered every
+    // other step once u_y(A) reached 0.2 h, and the lift on the flag
+    // alternated by +-0.5 N/m (with a second layer only, 25 Nov 2026);
+    // on the flapping FSI2 flag (N = 24, interpolated cut cells) such
+    // cells beyond the second layer, 2 to 6 of them beside fluid cells
+    // at a time, carried the drag's spikes (up to +150 N/m in a step,
+    // as their faces' staircase pressure came and went). A thin solid
+    // fills no cell, so it keeps its staircase.
+    // (every rank makes the same passes: the loop ends only on the
+    // reduced flag, after a pass that grew no rank's cells)
+    labelList layer(mesh_.nCells(), 0);
+    while (true)
+    {
+        forAll(covered, i)
+        {
+            layer[covered[i]] = isCut_[i] ? 1 : 0;
+        }
+        labelList nbrLayer;
+        syncTools::swapBoundaryCellList(mesh_, layer, nbrLayer);
+        bool grown = false;
+        forAll(covered, i)
+        {
+            if
+            (
+                !isCut_[i] && state[covered[i]] == 2
+             && neighbourHas(covered[i], layer, nbrLayer, 1)
+            )
+            {
+                isCut_[i] = true;
+                grown = true;
+            }
+        }
+        if (!returnReduce(grown, orOp<bool>()))
+        {
+            break;
+        }
+    }
 }
 
 
@@ -372,7 +417,8 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     // Turek-Hron N = 36, -refine 2, 3,072 covered cells), and the
     // penalty's fixed point stays smooth in the force; a surface at rest
     // keeps its cut cells (the rigid CFD1 flag: 0.054 s per step)
-    const bool newSplit = iteration_ == 0 || isCut_.size() != covered.size();
+    const bool newSplit =
+        scheme_->iteration() == 0 || isCut_.size() != covered.size();
     const bool newGeometry = !cutCellsCurrent(search.points());
     if (newGeometry)
     {
@@ -382,88 +428,9 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
     }
     const scalarField& fraction = coveredFraction_;
 
-    // A covered cell with some fluid in it (more than kappaMin of its
-    // volume) beside a covered cell with at most kappaMin fluid is a cut
-    // cell: the solid is thick there (a thin solid, with no cell it
-    // fills, keeps its staircase and stays tight). Whether its centre is
-    // inside or outside does not decide: the blockage of a cut cell
-    // follows the surface from a fluid fraction of kappaMin to 1, and a
-    // cell changes status only at the ends of that range or where its
-    // last full neighbour stops being full. (The first cut
-    // cells, centre outside only, changed status where the surface
-    // crossed a centre, half full: on the Turek-Hron flag the round-off
-    // of a centre on the surface made one corner of its tail cut and the
-    // other covered, lift +54 %, and the deformable flag's tail drifted.)
-    // The split is made in a step's first coupling iteration and held in
-    // its later ones, as the pairs are (searchPairs), with the fractions
-    // (above).
-    const scalar kappaMin = 0.02;
     if (newSplit)
     {
-        // per cell: 0 not covered, 1 covered and full (fluid fraction at
-        // most kappaMin), 2 covered with some fluid; the neighbours'
-        // across processor faces too (swapBoundaryCellList), so that the
-        // split of a decomposed run is the serial one
-        labelList state(mesh_.nCells(), 0);
-        forAll(covered, i)
-        {
-            state[covered[i]] = fraction[i] <= kappaMin ? 1 : 2;
-        }
-        isCut_.setSize(covered.size());
-        isCut_ = false;
-        {
-            labelList nbrState;
-            syncTools::swapBoundaryCellList(mesh_, state, nbrState);
-            forAll(covered, i)
-            {
-                isCut_[i] =
-                    state[covered[i]] == 2
-                 && neighbourHas(covered[i], state, nbrState, 1);
-            }
-        }
-        // and layer after layer: a covered cell with some fluid beside a
-        // cut cell, until none is left. Where a sloped surface enters a
-        // new row of cells, the cell it first touches (nearly all fluid)
-        // lies beside a cell the surface has not yet filled, and covered
-        // whole it puts the wall
-        // on its faces: on the deformable Turek-Hron flag (N = 44) one
-        // cell at the tail's upper edge was covered and uncovered every
-        // other step once u_y(A) reached 0.2 h, and the lift on the flag
-        // alternated by +-0.5 N/m (with a second layer only, 25 Nov 2026);
-        // on the flapping FSI2 flag (N = 24, interpolated cut cells) such
-        // cells beyond the second layer, 2 to 6 of them beside fluid cells
-        // at a time, carried the drag's spikes (up to +150 N/m in a step,
-        // as their faces' staircase pressure came and went). A thin solid
-        // fills no cell, so it keeps its staircase.
-        // (every rank makes the same passes: the loop ends only on the
-        // reduced flag, after a pass that grew no rank's cells)
-        labelList layer(mesh_.nCells(), 0);
-        while (true)
-        {
-            forAll(covered, i)
-            {
-                layer[covered[i]] = isCut_[i] ? 1 : 0;
-            }
-            labelList nbrLayer;
-            syncTools::swapBoundaryCellList(mesh_, layer, nbrLayer);
-            bool grown = false;
-            forAll(covered, i)
-            {
-                if
-                (
-                    !isCut_[i] && state[covered[i]] == 2
-                 && neighbourHas(covered[i], layer, nbrLayer, 1)
-                )
-                {
-                    isCut_[i] = true;
-                    grown = true;
-                }
-            }
-            if (!returnReduce(grown, orOp<bool>()))
-            {
-                break;
-            }
-        }
+        splitCutCells(covered, coveredFraction_);
     }
     const boolList& isCut = isCut_;
 
@@ -674,7 +641,7 @@ bool Foam::fv::immersedForcing::cutCellsCurrent
 ) const
 {
     const labelList& covered = coupling_.pairs().coveredCells();
-    if (iteration_ > 0 && isCut_.size() == covered.size())
+    if (scheme_->iteration() > 0 && isCut_.size() == covered.size())
     {
         return true;    // coveredFraction_ of the step's first iteration
     }
@@ -826,18 +793,6 @@ void Foam::fv::immersedForcing::fluidForce
         f += fw;
     }
     force_ = sum(f);
-
-    // Added-mass stabilisation of the explicit coupling: the solid's next
-    // step divides by m + m_a, so m_a times the acceleration of this step
-    // goes back into the force (the same on every rank: replicated solid)
-    if (addedMass_.size() && stepDeltaT_ > 0)
-    {
-        const vectorField& v = solid.velocities();
-        forAll(f, i)
-        {
-            f[i] += addedMass_[i]*(v[i] - velocities0_[i])/stepDeltaT_;
-        }
-    }
 }
 
 Foam::tmp<Foam::vectorField> Foam::fv::immersedForcing::spread
@@ -929,10 +884,47 @@ void Foam::fv::immersedForcing::writeDiagnostics()
             << advanceTime_ << ' '
             << coupling_.searchTime() - searchTime0_ + wallTime_ << ' '
             << coupling_.transferTime() - transferTime0_ << ' '
-            << forceTime_ << ' ' << iteration_ + 1 << ' ' << residual_
+            << forceTime_ << ' ' << scheme_->iteration() + 1 << ' '
+            << scheme_->residual()
             << endl;
     }
     stepIndex_ = -1;
+}
+
+
+void Foam::fv::immersedForcing::readSolidState(const fileName& stateDir)
+{
+    if (coupling_.solid().readState(stateDir))
+    {
+        Info<< type() << ' ' << name_ << ": solid state read from "
+            << stateDir << " (t = " << coupling_.solid().time() << ")"
+            << endl;
+    }
+    else if (coupling_.solid().isDeformable())
+    {
+        Info<< type() << ' ' << name_ << ": no solid state in " << stateDir
+            << ": the solid starts from its mesh, at rest" << endl;
+    }
+    velocities0_ = coupling_.solid().velocities();
+}
+
+
+void Foam::fv::immersedForcing::initialCoverage()
+{
+    coupling_.updatePairs();
+    coveredVelocity_ = coupling_.solidToFluid(coupling_.solid().velocities());
+    {
+        const surfaceSearch search(*this, false);
+        updateBoundary(search);
+        locateWall(search);
+    }
+    UIndirectList<scalar>
+    (
+        coverage_.primitiveFieldRef(), boundary_.coveredCells()
+    ) = 1.0;
+    coverage_.correctBoundaryConditions();
+    advanceIndex_ = mesh_.time().timeIndex();
+    searchIndex_ = mesh_.time().timeIndex();
 }
 
 
@@ -976,26 +968,10 @@ Foam::fv::immersedForcing::immersedForcing
         dimensionedScalar(dimless, Zero),
         "zeroGradient"
     ),
-    coveredVelocity_(),
     advanceIndex_(-1),
     searchIndex_(-1),
-    addedMass_(),
-    velocities0_(),
     stepDeltaT_(0),
-    addedMassLength_(0),
-    maxIterations_(1),
-    tolerance_(1e-3),
-    relaxation_(0.5),
-    iteration_(0),
     redo_(false),
-    residual_(0),
-    guess_(),
-    previousResidual_(),
-    previousOutput_(),
-    reuse_(4),
-    Vcols_(),
-    Wcols_(),
-    stepCols_(),
     probes_(coupling_.solid()),
     rhoFluid_(0),
     boundary_(mesh),
@@ -1017,8 +993,6 @@ Foam::fv::immersedForcing::immersedForcing
     transferTime0_(0),
     stepIndex_(-1),
     stepSolved_(false),
-    diagnostics_(),
-    unconstrained_(),
     coveredGradP_(Zero),
     rowScale_
     (
@@ -1052,53 +1026,20 @@ Foam::fv::immersedForcing::immersedForcing
         surfaceTriangles_, surfacePoints_, elementTriangles_
     );
 
-    // A restart: the solid's state of the start time
+    // A restart: the solid's state of the start time, then the coverage
+    // of its configuration, the running covering ramps and the coupling
+    // scheme's state
     const fileName stateDir
     (
         mesh.time().timePath()/"uniform"/"immersedSolid"
     );
-    if (coupling_.solid().readState(stateDir))
-    {
-        Info<< type() << ' ' << name_ << ": solid state read from "
-            << stateDir << " (t = " << coupling_.solid().time() << ")"
-            << endl;
-    }
-    else if (coupling_.solid().isDeformable())
-    {
-        Info<< type() << ' ' << name_ << ": no solid state in " << stateDir
-            << ": the solid starts from its mesh, at rest" << endl;
-    }
-    velocities0_ = coupling_.solid().velocities();
-
-    // Coverage of the initial configuration
-    coupling_.updatePairs();
-    coveredVelocity_ = coupling_.solidToFluid(coupling_.solid().velocities());
-    {
-        const surfaceSearch search(*this, false);
-        updateBoundary(search);
-        locateWall(search);
-    }
-    UIndirectList<scalar>
-    (
-        coverage_.primitiveFieldRef(), boundary_.coveredCells()
-    ) = 1.0;
-    coverage_.correctBoundaryConditions();
-    advanceIndex_ = mesh.time().timeIndex();
-    searchIndex_ = mesh.time().timeIndex();
-
-    // the running covering ramps of a restart
+    readSolidState(stateDir);
+    initialCoverage();
     boundary_.readRamps(stateDir/"coverRamps");
-    // and the coupling iterations' columns
-    if (maxIterations_ > 1)
-    {
-        readColumns(stateDir/"couplingColumns");
-    }
+    scheme_->readState(stateDir, coupling_.solid().nPoints());
 
-    // the added mass of the first step
-    setAddedMass();
-    Info<< type() << ' ' << name_ << ": explicit coupling, added mass "
-        << sum(addedMass_) << " kg (addedMassLength "
-        << addedMassLength_ << " m)" << endl;
+    Info<< type() << ' ' << name_ << ": coupling scheme " << scheme_->type()
+        << endl;
 
     // the solid's output at the start time
     coupling_.solid().write(true);
@@ -1276,206 +1217,28 @@ Foam::fv::immersedForcing::correctPressure(volScalarField& p) const
 bool Foam::fv::immersedForcing::updateForce()
 {
     endOfStep();
-    if (maxIterations_ <= 1)
+    if (!scheme_->iterates())
     {
         return true;
     }
-
-    // Residual of the fixed point G = F(G) (the force handed to the solid
-    // against the one the fluid gave back), over the replicated solid
-    immersedSolid& solid = coupling_.solid();
-    // (over the components the solid's constraints leave free: a force on
-    // a held component moves nothing)
-    const vectorField free(solid.freeComponents());
-    const vectorField F(cmptMultiply(free, solid.externalForce()));
-    const vectorField r(F - cmptMultiply(free, guess_));
-    const scalar magF = Foam::sqrt(sum(magSqr(F)));
-    residual_ = Foam::sqrt(sum(magSqr(r)))/max(magF, VSMALL);
-    Info<< type() << ' ' << name_ << ": coupling iteration " << iteration_ + 1
-        << ", force residual " << residual_ << endl;
-    if (residual_ < tolerance_ || iteration_ + 1 >= maxIterations_)
+    // the force the fluid gave back against the one handed to the solid
+    // (couplingScheme): done, or the next iteration from the step's start
+    const immersedSolid& solid = coupling_.solid();
+    if
+    (
+        scheme_->update
+        (
+            solid.externalForce(),
+            solid.freeComponents(),
+            guess_
+        )
+    )
     {
-        if (residual_ >= tolerance_)
-        {
-            WarningInFunction
-                << "The coupling did not converge in " << maxIterations_
-                << " iterations at t = " << mesh_.time().value()
-                << " (force residual " << residual_ << ", tolerance "
-                << tolerance_ << "): the step is taken as it is and the"
-                << " quasi-Newton columns are dropped" << endl;
-            // The columns of a step that stalled model its noise, not the
-            // map: kept, they threw the next step's first update far off
-            // (flap3D coarse: residual 1e-2 after 20 iterations, then 0.18
-            // updated to 5.4 and an inverted element). The next step
-            // starts with a relaxation, as the first one.
-            Vcols_.clear();
-            Wcols_.clear();
-            stepCols_.clear();
-        }
         return true;
-    }
-
-    // Interface quasi-Newton with an inverse Jacobian from a least-squares
-    // model (IQN-ILS, Degroote, Bathe & Vierendeels 2009, Comput Struct
-    // 87:793): x = guess_, xt = F(x) the force the fluid gives back, r =
-    // xt - x. With the differences of the iterations kept so far, V =
-    // [Delta r], W = [Delta xt], alpha = argmin |V alpha + r| and
-    // x_{k+1} = xt_k + W alpha (their Eq. 14); the first iteration of the
-    // first step relaxes, x_1 = x_0 + omega r. The columns of the last
-    // couplingReuse steps are kept (their Sect. 3.3).
-    if (iteration_ > 0)
-    {
-        Vcols_.append(new vectorField(r - previousResidual_));
-        Wcols_.append(new vectorField(F - previousOutput_));
-        stepCols_.append(mesh_.time().timeIndex());
-    }
-    previousResidual_ = r;
-    previousOutput_ = F;
-
-    // drop the columns of steps older than couplingReuse
-    {
-        const label oldest = mesh_.time().timeIndex() - reuse_;
-        label first = 0;
-        while (first < stepCols_.size() && stepCols_[first] < oldest)
-        {
-            ++first;
-        }
-        if (first > 0)
-        {
-            PtrList<vectorField> V(Vcols_.size() - first);
-            PtrList<vectorField> W(Wcols_.size() - first);
-            DynamicList<label> st(stepCols_.size() - first);
-            for (label j = first; j < Vcols_.size(); ++j)
-            {
-                V.set(j - first, Vcols_.set(j, nullptr));
-                W.set(j - first, Wcols_.set(j, nullptr));
-                st.append(stepCols_[j]);
-            }
-            Vcols_.transfer(V);
-            Wcols_.transfer(W);
-            stepCols_.transfer(st);
-        }
-    }
-
-    const label m = Vcols_.size();
-    if (m == 0)
-    {
-        guess_ += relaxation_*r;
-    }
-    else
-    {
-        // normal equations of the least-squares problem, newest columns
-        // first; a column (nearly) dependent on the newer ones is left out
-        // (the filtering of Haelterman et al. 2016, by its Gram-Schmidt
-        // remainder)
-        List<label> use;
-        List<vectorField> Q;
-        for (label j = m - 1; j >= 0; --j)
-        {
-            vectorField q(Vcols_[j]);
-            const scalar norm0 = Foam::sqrt(sum(magSqr(q)));
-            for (const vectorField& qi : Q)
-            {
-                q -= (sum(qi & q))*qi;
-            }
-            const scalar norm = Foam::sqrt(sum(magSqr(q)));
-            if (norm > 1e-8*norm0 && norm0 > VSMALL)
-            {
-                Q.append(vectorField(q/norm));
-                use.append(j);
-            }
-        }
-        // alpha from the QR factors: V_use = Q R, R alpha = -Q^T r
-        const label k = use.size();
-        scalarSquareMatrix R(k, Zero);
-        scalarField rhs(k, Zero);
-        for (label a = 0; a < k; ++a)
-        {
-            rhs[a] = -sum(Q[a] & r);
-            for (label b = a; b < k; ++b)
-            {
-                R(a, b) = sum(Q[a] & Vcols_[use[b]]);
-            }
-        }
-        scalarField alpha(k, Zero);
-        for (label a = k - 1; a >= 0; --a)
-        {
-            scalar v = rhs[a];
-            for (label b = a + 1; b < k; ++b)
-            {
-                v -= R(a, b)*alpha[b];
-            }
-            alpha[a] = v/R(a, a);
-        }
-        // x_{k+1} = x_k + omega (r + V alpha) + (W - V) alpha: Eq. 14's
-        // xt_k + W alpha = x_k + (r + V alpha) + (W - V) alpha with the
-        // part of r the columns do not model, r + V alpha, relaxed by
-        // couplingRelaxation as the first iteration's whole r. Taken
-        // whole (omega = 1), that part moved the flag's modes whose
-        // added mass exceeds its own by a factor above 1 (the fluid's
-        // answer to them is large and opposite): the residual of the
-        // second iteration often grew (Turek-Hron FSI1 near its steady
-        // state, 3.08 iterations per step against 2.5-2.7 relaxed by
-        // 0.1-0.5; FSI2 at 1.47 s: 0.09 updated to an inverted element).
-        vectorField remainder(r);
-        for (label a = 0; a < k; ++a)
-        {
-            remainder += alpha[a]*Vcols_[use[a]];
-        }
-        guess_ = cmptMultiply(free, guess_) + relaxation_*remainder;
-        for (label a = 0; a < k; ++a)
-        {
-            guess_ += alpha[a]*(Wcols_[use[a]] - Vcols_[use[a]]);
-        }
     }
     redo_ = true;
     restoreFluid();
     return false;
-}
-
-
-void Foam::fv::immersedForcing::writeColumns(const fileName& file) const
-{
-    // every rank its own copy, as the solid's state
-    OFstream os(file);
-    os.precision(17);
-    os  << labelList(stepCols_) << nl;
-    forAll(Vcols_, j)
-    {
-        os  << Vcols_[j] << nl << Wcols_[j] << nl;
-    }
-}
-
-
-void Foam::fv::immersedForcing::readColumns(const fileName& file)
-{
-    if (!isFile(file))
-    {
-        return;
-    }
-    IFstream is(file);
-    const labelList steps(is);
-    Vcols_.setSize(steps.size());
-    Wcols_.setSize(steps.size());
-    const label n = coupling_.solid().nPoints();
-    forAll(steps, j)
-    {
-        Vcols_.set(j, new vectorField(is));
-        Wcols_.set(j, new vectorField(is));
-        if (Vcols_[j].size() != n || Wcols_[j].size() != n)
-        {
-            FatalIOErrorInFunction(is)
-                << file << " has columns of " << Vcols_[j].size() << " and "
-                << Wcols_[j].size() << " values for " << n << " solid nodes:"
-                << " it belongs to another solid mesh. Remove it (the"
-                << " coupling iterations then start without the last steps'"
-                << " columns) or restart from a time written with this mesh"
-                << exit(FatalIOError);
-        }
-    }
-    stepCols_ = steps;
-    Info<< type() << ' ' << name_ << ": " << steps.size()
-        << " coupling-iteration columns read from " << file << endl;
 }
 
 
@@ -1544,7 +1307,6 @@ void Foam::fv::immersedForcing::endOfStep()
     const volVectorField& U =
         mesh_.lookupObject<volVectorField>(fieldNames_.first());
     const clockValue start(true);
-    setAddedMass();
     fluidForce(p, U);
     source_ = fluidSource(U);
     forceTime_ += double(start.elapsed());
@@ -1575,6 +1337,17 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         fieldNames_.resize(1);
         fieldNames_.first() = coeffs_.getOrDefault<word>("U", "U");
         applied_.setSize(fieldNames_.size(), false);
+        checkRemovedEntries
+        (
+            coeffs_,
+            {
+                {"addedMassLength", "a solid about as dense as the fluid"
+                    " takes couplingIterations (remove the entry)"},
+                {"coupling", "the coupling is chosen by couplingScheme"
+                    " (explicit or IQNILS; remove the entry)"}
+            },
+            "fvOption " + name_
+        );
         coeffs_.readEntry("rhoFluid", rhoFluid_);
         boundary_.setPressureName(coeffs_.getOrDefault<word>("p", "p"));
         ghostWall_ =
@@ -1609,18 +1382,24 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
             }
             ghostWall_ = false;
         }
-        maxIterations_ = coeffs_.getOrDefault<label>("couplingIterations", 1);
-        readAddedMass(coeffs_);
-        tolerance_ = coeffs_.getOrDefault<scalar>("couplingTolerance", 1e-3);
-        relaxation_ = coeffs_.getOrDefault<scalar>("couplingRelaxation", 0.5);
-        reuse_ = coeffs_.getOrDefault<label>("couplingReuse", 4);
-        if (maxIterations_ < 1 || tolerance_ <= 0 || relaxation_ <= 0)
+        // the coupling scheme: made again when its type changes (a
+        // run-time modified dictionary), else its entries read again
+        if
+        (
+            !scheme_.valid()
+         || scheme_->type() != couplingScheme::selectedType(coeffs_)
+        )
         {
-            FatalIOErrorInFunction(coeffs_)
-                << "couplingIterations " << maxIterations_
-                << ", couplingTolerance " << tolerance_
-                << " and couplingRelaxation " << relaxation_
-                << " must be positive" << exit(FatalIOError);
+            scheme_ = couplingScheme::New
+            (
+                coeffs_,
+                string(type() + ' ' + name_),
+                mesh_.time()
+            );
+        }
+        else
+        {
+            scheme_->read(coeffs_);
         }
         boundary_.setCoverRamp(!cut_ && coeffs_.getOrDefault<bool>("coverRamp", true));
         if (rhoFluid_ <= 0)

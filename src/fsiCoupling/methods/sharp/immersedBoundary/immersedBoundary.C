@@ -36,6 +36,130 @@ registerOptSwitch
 );
 
 
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+//- Breadth-first fill over the fluid cells (a negative covered index)
+//  through the cell-cell addressing of the internal faces
+//  (primitiveMesh::cellCells): the cells reached, in queue order
+class fluidFill
+{
+    const Foam::labelListList& cellCells_;
+    const Foam::labelList& coveredIndex_;
+
+public:
+
+    //- Per cell: reached
+    Foam::List<char> reached;
+
+    //- The cells reached, in the order they were; head: the first whose
+    //  neighbours are still to be visited; tail: the end
+    Foam::labelList queue;
+    Foam::label head;
+    Foam::label tail;
+
+    //- Construct for the cell-cell addressing and the covered index of
+    //  nCells cells; nothing reached
+    fluidFill
+    (
+        const Foam::labelListList& cellCells,
+        const Foam::labelList& coveredIndex,
+        const Foam::label nCells
+    )
+    :
+        cellCells_(cellCells),
+        coveredIndex_(coveredIndex),
+        reached(nCells, char(0)),
+        queue(nCells),
+        head(0),
+        tail(0)
+    {}
+
+    //- Reach celli when it is fluid and not reached yet
+    void seed(const Foam::label celli)
+    {
+        if (!reached[celli] && coveredIndex_[celli] < 0)
+        {
+            reached[celli] = 1;
+            queue[tail++] = celli;
+        }
+    }
+
+    //- Reach the fluid cells connected to the queued ones
+    void fill()
+    {
+        while (head < tail)
+        {
+            const Foam::label celli = queue[head++];
+            for (const Foam::label nb : cellCells_[celli])
+            {
+                seed(nb);
+            }
+        }
+    }
+};
+
+
+//- Fill, then seed the fluid cells across processor faces from the
+//  reached cells of the other side and fill again, until no rank reaches
+//  more. Collective (every rank, with or without processor faces)
+void fillAcrossProcessors(const Foam::polyMesh& mesh, fluidFill& reach)
+{
+    using namespace Foam;
+
+    const polyBoundaryMesh& pbm = mesh.boundaryMesh();
+    const label nInternal = mesh.nInternalFaces();
+
+    while (true)
+    {
+        reach.fill();
+        if (!Pstream::parRun())
+        {
+            break;
+        }
+        // across processor faces (fluid on both sides)
+        boolList nbrReached(mesh.nBoundaryFaces(), false);
+        forAll(pbm, patchi)
+        {
+            if (pbm[patchi].coupled())
+            {
+                const labelUList& faceCells = pbm[patchi].faceCells();
+                const label start = pbm[patchi].start() - nInternal;
+                forAll(faceCells, i)
+                {
+                    nbrReached[start + i] = reach.reached[faceCells[i]];
+                }
+            }
+        }
+        syncTools::swapBoundaryFaceList(mesh, nbrReached);
+        const label before = reach.tail;
+        forAll(pbm, patchi)
+        {
+            if (!pbm[patchi].coupled())
+            {
+                continue;
+            }
+            const labelUList& faceCells = pbm[patchi].faceCells();
+            forAll(faceCells, i)
+            {
+                if (nbrReached[pbm[patchi].start() + i - nInternal])
+                {
+                    reach.seed(faceCells[i]);
+                }
+            }
+        }
+        if (!returnReduce(reach.tail - before, sumOp<label>()))
+        {
+            break;
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::immersedBoundary::immersedBoundary
@@ -83,15 +207,16 @@ Foam::immersedBoundary::immersedBoundary
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-void Foam::immersedBoundary::update
+void Foam::immersedBoundary::setCoveredCells
 (
     const labelUList& coveredCells,
-    const vectorField& coveredVelocity
+    const vectorField& coveredVelocity,
+    DynamicList<label>& newlyCovered,
+    DynamicList<label>& newlyUncovered
 )
 {
     // The cells covered since the last update (the index is still the
     // last update's) and those uncovered since
-    DynamicList<label> newlyCovered;
     for (const label celli : coveredCells)
     {
         if (coveredIndex_[celli] < 0)
@@ -111,7 +236,6 @@ void Foam::immersedBoundary::update
     {
         coveredIndex_[coveredCells_[i]] = i;
     }
-    DynamicList<label> newlyUncovered;
     for (const label celli : oldCells)
     {
         if (coveredIndex_[celli] < 0)
@@ -119,55 +243,44 @@ void Foam::immersedBoundary::update
             newlyUncovered.append(celli);
         }
     }
+}
 
-    // The enclosed fluid regions: kept, updated where the covered cells
-    // changed, or found afresh
-    const bool sameCells = returnReduce
-    (
-        newlyCovered.empty() && newlyUncovered.empty(),
-        andOp<bool>()
-    );
-    if
-    (
-        !enclosedFound_
-     || (!sameCells && !updateEnclosedFluid(newlyCovered, newlyUncovered))
-    )
-    {
-        findEnclosedFluid();
-    }
 
+void Foam::immersedBoundary::exchangeNbrCovered()
+{
     // Covered flag and solid velocity of the cells across coupled faces
-    const boolList oldNbrCovered(ramp_ ? nbrCovered_ : boolList());
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const label nInternal = mesh_.nInternalFaces();
+    nbrCovered_ = false;
+    nbrVelocity_ = Zero;
+    forAll(pbm, patchi)
     {
-        const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-        const label nInternal = mesh_.nInternalFaces();
-        nbrCovered_ = false;
-        nbrVelocity_ = Zero;
-        forAll(pbm, patchi)
+        if (!pbm[patchi].coupled())
         {
-            if (!pbm[patchi].coupled())
-            {
-                continue;
-            }
-            const labelUList& faceCells = pbm[patchi].faceCells();
-            const label start = pbm[patchi].start() - nInternal;
-            forAll(faceCells, i)
-            {
-                const label ic = coveredIndex_[faceCells[i]];
-                if (ic >= 0)
-                {
-                    nbrCovered_[start + i] = true;
-                    nbrVelocity_[start + i] = coveredVelocity_[ic];
-                }
-            }
+            continue;
         }
-        if (processorExchange)
+        const labelUList& faceCells = pbm[patchi].faceCells();
+        const label start = pbm[patchi].start() - nInternal;
+        forAll(faceCells, i)
         {
-            syncTools::swapBoundaryFaceList(mesh_, nbrCovered_);
-            syncTools::swapBoundaryFaceList(mesh_, nbrVelocity_);
+            const label ic = coveredIndex_[faceCells[i]];
+            if (ic >= 0)
+            {
+                nbrCovered_[start + i] = true;
+                nbrVelocity_[start + i] = coveredVelocity_[ic];
+            }
         }
     }
+    if (processorExchange)
+    {
+        syncTools::swapBoundaryFaceList(mesh_, nbrCovered_);
+        syncTools::swapBoundaryFaceList(mesh_, nbrVelocity_);
+    }
+}
 
+
+void Foam::immersedBoundary::findImmersedFaces()
+{
     // Immersed faces: every face of a covered cell (internal, or coupled
     // boundary), and the coupled faces whose other side is covered
     const cellList& cells = mesh_.cells();
@@ -215,6 +328,48 @@ void Foam::immersedBoundary::update
     boundaryFaces_.transfer(boundary);
     wallFraction_.setSize(nFaces());
     wallFraction_ = -1;
+}
+
+
+void Foam::immersedBoundary::update
+(
+    const labelUList& coveredCells,
+    const vectorField& coveredVelocity
+)
+{
+    // The cells covered since the last update and those uncovered since
+    DynamicList<label> newlyCovered;
+    DynamicList<label> newlyUncovered;
+    setCoveredCells
+    (
+        coveredCells,
+        coveredVelocity,
+        newlyCovered,
+        newlyUncovered
+    );
+
+    // The enclosed fluid regions: kept, updated where the covered cells
+    // changed, or found afresh
+    const bool sameCells = returnReduce
+    (
+        newlyCovered.empty() && newlyUncovered.empty(),
+        andOp<bool>()
+    );
+    if
+    (
+        !enclosedFound_
+     || (!sameCells && !updateEnclosedFluid(newlyCovered, newlyUncovered))
+    )
+    {
+        findEnclosedFluid();
+    }
+
+    // Covered flag and solid velocity of the cells across coupled faces
+    const boolList oldNbrCovered(ramp_ ? nbrCovered_ : boolList());
+    exchangeNbrCovered();
+
+    // Immersed faces
+    findImmersedFaces();
 
     // (not at the first update: the initial covered cells were not
     // covered by a motion)
@@ -596,39 +751,14 @@ void Foam::immersedBoundary::findEnclosedFluid()
     // Fluid cells connected (through faces between fluid cells) to a cell
     // where the pressure is fixed: a boundary face whose p condition
     // fixes the value, or, with none in the domain, the reference cell
-    // (the solver's, setPressureReference). Breadth-first fill over the cell-cell
-    // addressing of the internal faces (primitiveMesh::cellCells), repeated
-    // across processor faces until no rank changes.
+    // (the solver's, setPressureReference). Breadth-first fill over the
+    // cell-cell addressing of the internal faces (primitiveMesh::cellCells),
+    // repeated across processor faces until no rank changes.
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-    const label nInternal = mesh_.nInternalFaces();
     const label nCells = mesh_.nCells();
     ++nFills_;
 
-    const labelListList& cellCells = mesh_.cellCells();
-
-    List<char> reached(nCells, char(0));
-    labelList queue(nCells);
-    label head = 0;
-    label tail = 0;
-    auto seed = [&](const label celli)
-    {
-        if (!reached[celli] && coveredIndex_[celli] < 0)
-        {
-            reached[celli] = 1;
-            queue[tail++] = celli;
-        }
-    };
-    auto fill = [&]()
-    {
-        while (head < tail)
-        {
-            const label celli = queue[head++];
-            for (const label nb : cellCells[celli])
-            {
-                seed(nb);
-            }
-        }
-    };
+    fluidFill reach(mesh_.cellCells(), coveredIndex_, nCells);
 
     const volScalarField* pPtr = mesh_.findObject<volScalarField>(pName_);
     bool anyFixed = false;
@@ -645,7 +775,7 @@ void Foam::immersedBoundary::findEnclosedFluid()
                 anyFixed = anyFixed || pbm[patchi].size();
                 for (const label celli : pbm[patchi].faceCells())
                 {
-                    seed(celli);
+                    reach.seed(celli);
                 }
             }
         }
@@ -654,140 +784,156 @@ void Foam::immersedBoundary::findEnclosedFluid()
     enclosedFound_ = returnReduce(pPtr != nullptr, andOp<bool>());
     if (!anyFixed && refCell_ >= 0 && nCells)
     {
-        seed(min(refCell_, nCells - 1));
+        reach.seed(min(refCell_, nCells - 1));
     }
 
-    while (true)
-    {
-        fill();
-        if (!Pstream::parRun())
-        {
-            break;
-        }
-        // across processor faces (fluid on both sides)
-        boolList nbrReached(mesh_.nBoundaryFaces(), false);
-        forAll(pbm, patchi)
-        {
-            if (pbm[patchi].coupled())
-            {
-                const labelUList& faceCells = pbm[patchi].faceCells();
-                const label start = pbm[patchi].start() - nInternal;
-                forAll(faceCells, i)
-                {
-                    nbrReached[start + i] = reached[faceCells[i]];
-                }
-            }
-        }
-        syncTools::swapBoundaryFaceList(mesh_, nbrReached);
-        const label before = tail;
-        forAll(pbm, patchi)
-        {
-            if (!pbm[patchi].coupled())
-            {
-                continue;
-            }
-            const labelUList& faceCells = pbm[patchi].faceCells();
-            forAll(faceCells, i)
-            {
-                if (nbrReached[pbm[patchi].start() + i - nInternal])
-                {
-                    seed(faceCells[i]);
-                }
-            }
-        }
-        if (!returnReduce(tail - before, sumOp<label>()))
-        {
-            break;
-        }
-    }
+    fillAcrossProcessors(mesh_, reach);
 
     // The fluid cells not reached form regions enclosed by the solid (and
     // walls) where the pressure is only known up to a constant: one cell
     // of each (this rank's part) gets a reference in constrainPressure
     refCells_.clear();
-    const label nReached = tail;
+    const label nReached = reach.tail;
     region_ = -1;
     for (label i = 0; i < nReached; ++i)
     {
-        region_[queue[i]] = 0;
+        region_[reach.queue[i]] = 0;
     }
-    forAll(reached, celli)
+    forAll(reach.reached, celli)
     {
-        if (!reached[celli] && coveredIndex_[celli] < 0)
+        if (!reach.reached[celli] && coveredIndex_[celli] < 0)
         {
-            const label first = tail;
+            const label first = reach.tail;
             refCells_.append(celli);
-            seed(celli);
-            fill();
-            for (label i = first; i < tail; ++i)
+            reach.seed(celli);
+            reach.fill();
+            for (label i = first; i < reach.tail; ++i)
             {
-                region_[queue[i]] = refCells_.size();
+                region_[reach.queue[i]] = refCells_.size();
             }
         }
     }
-    nEnclosed_ = tail - nReached;
+    nEnclosed_ = reach.tail - nReached;
 }
 
 
-bool Foam::immersedBoundary::updateEnclosedFluid
-(
-    const labelUList& newlyCovered,
-    const labelUList& newlyUncovered
-)
+Foam::label Foam::immersedBoundary::nextStamp()
 {
-    // The regions of the last fill stay what they were when (a) every
-    // connected group of newly covered cells leaves its fluid neighbours
-    // connected to each other (then any path of fluid cells through the
-    // group can go round it), none of them being a seed of the fill or a
-    // reference cell; and (b) every connected group of newly uncovered
-    // cells borders fluid of one region only (it joins that region).
-    // Checked locally (within this rank, a bounded fill); anything else
-    // (a group on a processor face, regions that merge or split) asks for
-    // the whole fill. Same result as findEnclosedFluid (test
-    // fsiCoupling.enclosedUpdate).
-    const labelListList& cellCells = mesh_.cellCells();
-    const cellList& cells = mesh_.cells();
-    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-    const volScalarField* pPtr = mesh_.findObject<volScalarField>(pName_);
-
-    bool ok = (pPtr != nullptr) && enclosedFound_;
-    if (mark_.size() != mesh_.nCells())
+    if (++stamp_ == labelMax)
     {
-        mark_.setSize(mesh_.nCells(), 0);
-        owner_.setSize(mesh_.nCells(), -1);
-        stamp_ = 0;
+        mark_ = 0;
+        stamp_ = 1;
     }
-    auto nextStamp = [&]()
-    {
-        if (++stamp_ == labelMax)
-        {
-            mark_ = 0;
-            stamp_ = 1;
-        }
-        return stamp_;
-    };
+    return stamp_;
+}
 
+
+bool Foam::immersedBoundary::specialCell
+(
+    const label celli,
+    const volScalarField* pPtr
+) const
+{
     // A cell whose group is not local (a coupled face) or that seeds the
     // fill (a face on a fixed-value pressure boundary)
-    auto special = [&](const label celli)
+    const cellList& cells = mesh_.cells();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    for (const label facei : cells[celli])
     {
-        for (const label facei : cells[celli])
+        if (!mesh_.isInternalFace(facei))
         {
-            if (!mesh_.isInternalFace(facei))
+            const label patchi = pbm.whichPatch(facei);
+            if
+            (
+                pbm[patchi].coupled()
+             || (pPtr && pPtr->boundaryField()[patchi].fixesValue())
+            )
             {
-                const label patchi = pbm.whichPatch(facei);
-                if
-                (
-                    pbm[patchi].coupled()
-                 || (pPtr && pPtr->boundaryField()[patchi].fixesValue())
-                )
+                return true;
+            }
+        }
+    }
+    return celli == refCell_ || refCells_.found(celli);
+}
+
+
+bool Foam::immersedBoundary::targetsConnected
+(
+    const labelUList& targets,
+    DynamicList<label>& queue,
+    labelList& parent
+)
+{
+    const labelListList& cellCells = mesh_.cellCells();
+
+    // fills from all targets at once through fluid cells, joining
+    // the targets whose fills meet (union-find), until one set is
+    // left or the budget is spent
+    const label visited = nextStamp();
+    parent.setSize(targets.size());
+    queue.clear();
+    forAll(targets, i)
+    {
+        parent[i] = i;
+        mark_[targets[i]] = visited;
+        owner_[targets[i]] = i;
+        queue.append(targets[i]);
+    }
+    auto find = [&](label i)
+    {
+        while (parent[i] != i)
+        {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        return i;
+    };
+    label nSets = targets.size();
+    const label budget = 50*targets.size() + 1000;
+    for (label head = 0; head < queue.size() && nSets > 1; ++head)
+    {
+        if (queue.size() > budget)
+        {
+            break;
+        }
+        const label celli = queue[head];
+        for (const label nb : cellCells[celli])
+        {
+            if (covered(nb))
+            {
+                continue;
+            }
+            if (mark_[nb] != visited)
+            {
+                mark_[nb] = visited;
+                owner_[nb] = owner_[celli];
+                queue.append(nb);
+            }
+            else
+            {
+                const label a = find(owner_[nb]);
+                const label b = find(owner_[celli]);
+                if (a != b)
                 {
-                    return true;
+                    parent[a] = b;
+                    --nSets;
                 }
             }
         }
-        return celli == refCell_ || refCells_.found(celli);
-    };
+    }
+    return nSets == 1;
+}
+
+
+void Foam::immersedBoundary::checkCoveredGroups
+(
+    const labelUList& newlyCovered,
+    const volScalarField* pPtr,
+    bool& ok,
+    label& nEnclosedCovered
+)
+{
+    const labelListList& cellCells = mesh_.cellCells();
 
     // (a) newly covered groups
     const label inA = nextStamp();
@@ -799,7 +945,6 @@ bool Foam::immersedBoundary::updateEnclosedFluid
     DynamicList<label> targets;
     DynamicList<label> queue;
     labelList parent;
-    label nEnclosedCovered = 0;
     for (const label start : newlyCovered)
     {
         if (!ok)
@@ -820,7 +965,7 @@ bool Foam::immersedBoundary::updateEnclosedFluid
         for (label i = 0; i < group.size() && ok; ++i)
         {
             const label celli = group[i];
-            if (special(celli))
+            if (specialCell(celli, pPtr))
             {
                 ok = false;
             }
@@ -846,72 +991,29 @@ bool Foam::immersedBoundary::updateEnclosedFluid
         {
             continue;
         }
-        // fills from all targets at once through fluid cells, joining
-        // the targets whose fills meet (union-find), until one set is
-        // left or the budget is spent
-        const label visited = nextStamp();
-        parent.setSize(targets.size());
-        queue.clear();
-        forAll(targets, i)
-        {
-            parent[i] = i;
-            mark_[targets[i]] = visited;
-            owner_[targets[i]] = i;
-            queue.append(targets[i]);
-        }
-        auto find = [&](label i)
-        {
-            while (parent[i] != i)
-            {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
-            }
-            return i;
-        };
-        label nSets = targets.size();
-        const label budget = 50*targets.size() + 1000;
-        for (label head = 0; head < queue.size() && nSets > 1; ++head)
-        {
-            if (queue.size() > budget)
-            {
-                break;
-            }
-            const label celli = queue[head];
-            for (const label nb : cellCells[celli])
-            {
-                if (covered(nb))
-                {
-                    continue;
-                }
-                if (mark_[nb] != visited)
-                {
-                    mark_[nb] = visited;
-                    owner_[nb] = owner_[celli];
-                    queue.append(nb);
-                }
-                else
-                {
-                    const label a = find(owner_[nb]);
-                    const label b = find(owner_[celli]);
-                    if (a != b)
-                    {
-                        parent[a] = b;
-                        --nSets;
-                    }
-                }
-            }
-        }
-        ok = (nSets == 1);
+        ok = targetsConnected(targets, queue, parent);
     }
+}
+
+
+void Foam::immersedBoundary::checkUncoveredGroups
+(
+    const labelUList& newlyUncovered,
+    const volScalarField* pPtr,
+    bool& ok,
+    DynamicList<label>& joined,
+    DynamicList<label>& joinedRegion
+)
+{
+    const labelListList& cellCells = mesh_.cellCells();
 
     // (b) newly uncovered groups: the region of the fluid they border
-    DynamicList<label> joined;
-    DynamicList<label> joinedRegion;
     const label inB = nextStamp();
     for (const label celli : newlyUncovered)
     {
         mark_[celli] = inB;
     }
+    DynamicList<label> group;
     for (const label start : newlyUncovered)
     {
         if (!ok)
@@ -930,7 +1032,7 @@ bool Foam::immersedBoundary::updateEnclosedFluid
         for (label i = 0; i < group.size() && ok; ++i)
         {
             const label celli = group[i];
-            if (special(celli))
+            if (specialCell(celli, pPtr))
             {
                 ok = false;
             }
@@ -968,6 +1070,43 @@ bool Foam::immersedBoundary::updateEnclosedFluid
             }
         }
     }
+}
+
+
+bool Foam::immersedBoundary::updateEnclosedFluid
+(
+    const labelUList& newlyCovered,
+    const labelUList& newlyUncovered
+)
+{
+    // The regions of the last fill stay what they were when (a) every
+    // connected group of newly covered cells leaves its fluid neighbours
+    // connected to each other (then any path of fluid cells through the
+    // group can go round it), none of them being a seed of the fill or a
+    // reference cell; and (b) every connected group of newly uncovered
+    // cells borders fluid of one region only (it joins that region).
+    // Checked locally (within this rank, a bounded fill); anything else
+    // (a group on a processor face, regions that merge or split) asks for
+    // the whole fill. Same result as findEnclosedFluid (test
+    // fsiCoupling.enclosedUpdate).
+    const volScalarField* pPtr = mesh_.findObject<volScalarField>(pName_);
+
+    bool ok = (pPtr != nullptr) && enclosedFound_;
+    if (mark_.size() != mesh_.nCells())
+    {
+        mark_.setSize(mesh_.nCells(), 0);
+        owner_.setSize(mesh_.nCells(), -1);
+        stamp_ = 0;
+    }
+
+    // (a) newly covered groups
+    label nEnclosedCovered = 0;
+    checkCoveredGroups(newlyCovered, pPtr, ok, nEnclosedCovered);
+
+    // (b) newly uncovered groups: the region of the fluid they border
+    DynamicList<label> joined;
+    DynamicList<label> joinedRegion;
+    checkUncoveredGroups(newlyUncovered, pPtr, ok, joined, joinedRegion);
 
     if (!returnReduce(ok, andOp<bool>()))
     {
@@ -989,6 +1128,35 @@ bool Foam::immersedBoundary::updateEnclosedFluid
 }
 
 
+Foam::vector Foam::immersedBoundary::solidVelocity(const label facei) const
+{
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const label nInternal = mesh_.nInternalFaces();
+
+    // The solid flux u_s . S_f of an immersed face (the mean of the two
+    // covered cells' u_s between two of them): its u_s
+    if (facei < nInternal)
+    {
+        const label io = coveredIndex_[own[facei]];
+        const label in = coveredIndex_[nei[facei]];
+        if (io >= 0 && in >= 0)
+        {
+            return vector(0.5*(coveredVelocity_[io] + coveredVelocity_[in]));
+        }
+        return vector(coveredVelocity_[io >= 0 ? io : in]);
+    }
+    const label io = coveredIndex_[mesh_.faceOwner()[facei]];
+    const bool nc = nbrCovered(facei);
+    const vector& un = nbrVelocity_[facei - nInternal];
+    if (io >= 0 && nc)
+    {
+        return vector(0.5*(coveredVelocity_[io] + un));
+    }
+    return vector(io >= 0 ? coveredVelocity_[io] : un);
+}
+
+
 void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
 {
     const labelUList& own = mesh_.owner();
@@ -996,31 +1164,6 @@ void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
     const surfaceVectorField& Sf = mesh_.Sf();
     const surfaceScalarField& magSf = mesh_.magSf();
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-    const label nInternal = mesh_.nInternalFaces();
-
-    // The solid flux u_s . S_f of an immersed face (the mean of the two
-    // covered cells' u_s between two of them)
-    auto solidVelocity = [&](const label facei)
-    {
-        if (facei < nInternal)
-        {
-            const label io = coveredIndex_[own[facei]];
-            const label in = coveredIndex_[nei[facei]];
-            if (io >= 0 && in >= 0)
-            {
-                return vector(0.5*(coveredVelocity_[io] + coveredVelocity_[in]));
-            }
-            return vector(coveredVelocity_[io >= 0 ? io : in]);
-        }
-        const label io = coveredIndex_[mesh_.faceOwner()[facei]];
-        const bool nc = nbrCovered(facei);
-        const vector& un = nbrVelocity_[facei - nInternal];
-        if (io >= 0 && nc)
-        {
-            return vector(0.5*(coveredVelocity_[io] + un));
-        }
-        return vector(io >= 0 ? coveredVelocity_[io] : un);
-    };
 
     // The solid's volume change seen by the fluid: the net solid flux out
     // of the covered cells through their faces to fluid cells, Q over
@@ -1092,6 +1235,71 @@ void Foam::immersedBoundary::constrainFlux(surfaceScalarField& phi) const
 }
 
 
+void Foam::immersedBoundary::keepRamp
+(
+    const label facei,
+    const scalar t,
+    Map<ramp>& running
+) const
+{
+    const auto iter = ramps_.cfind(facei);
+    if (iter.found() && t - iter.val().start < iter.val().tau)
+    {
+        running.insert(facei, iter.val());
+    }
+}
+
+
+void Foam::immersedBoundary::startRamp
+(
+    const label facei,
+    const scalar frozen,
+    const vector& us,
+    const scalar d,
+    const scalar t,
+    const scalar dt,
+    Map<ramp>& running
+)
+{
+    const scalar u = mag(us);
+    if (u > VSMALL)
+    {
+        // (started at the last step: its first weight is 1 - dt/tau)
+        running.set(facei, ramp{t - dt, d/u, frozen});
+    }
+}
+
+
+void Foam::immersedBoundary::reportRamps
+(
+    const scalar t,
+    const scalar dt
+) const
+{
+    // (DebugSwitches { immersedBoundary 1; } in controlDict)
+    if (debug && ramps_.size())
+    {
+        scalar tauMin = GREAT, tauMax = 0, frozenMax = 0;
+        label nFresh = 0;
+        forAllConstIters(ramps_, iter)
+        {
+            const ramp& r = iter.val();
+            tauMin = min(tauMin, r.tau);
+            tauMax = max(tauMax, r.tau);
+            frozenMax = max(frozenMax, mag(r.frozen));
+            if (r.start > t - 1.5*dt)
+            {
+                ++nFresh;
+            }
+        }
+        Pout<< "immersedBoundary ramps at t = " << t << ": " << ramps_.size()
+            << " running (" << nFresh << " new), tau/dt "
+            << tauMin/dt << " to " << tauMax/dt << ", max |frozen flux| "
+            << frozenMax << endl;
+    }
+}
+
+
 void Foam::immersedBoundary::updateRamps
 (
     const labelUList& newlyCovered,
@@ -1114,30 +1322,8 @@ void Foam::immersedBoundary::updateRamps
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
 
     // the ramps still running on faces still between covered and fluid
+    // (keepRamp), and those that start (startRamp)
     Map<ramp> running(2*ramps_.size());
-    auto keep = [&](const label facei)
-    {
-        const auto iter = ramps_.cfind(facei);
-        if (iter.found() && t - iter.val().start < iter.val().tau)
-        {
-            running.insert(facei, iter.val());
-        }
-    };
-    auto start = [&]
-    (
-        const label facei,
-        const scalar frozen,
-        const vector& us,
-        const scalar d
-    )
-    {
-        const scalar u = mag(us);
-        if (u > VSMALL)
-        {
-            // (started at the last step: its first weight is 1 - dt/tau)
-            running.set(facei, ramp{t - dt, d/u, frozen});
-        }
-    };
 
     labelHashSet fresh(newlyCovered);
     for (const label facei : internalFaces_)
@@ -1151,17 +1337,20 @@ void Foam::immersedBoundary::updateRamps
         const label c = covered(o) ? o : n;
         if (fresh.found(c) && phiPtr)
         {
-            start
+            startRamp
             (
                 facei,
                 (*phiPtr)[facei],
                 coveredVelocity_[coveredIndex_[c]],
-                mag(C[n] - C[o])
+                mag(C[n] - C[o]),
+                t,
+                dt,
+                running
             );
         }
         else
         {
-            keep(facei);
+            keepRamp(facei, t, running);
         }
     }
     {
@@ -1181,7 +1370,7 @@ void Foam::immersedBoundary::updateRamps
             if (newly && phiPtr)
             {
                 const label patchi = pbm.whichPatch(facei);
-                start
+                startRamp
                 (
                     facei,
                     phiPtr->boundaryField()[patchi]
@@ -1189,38 +1378,21 @@ void Foam::immersedBoundary::updateRamps
                     covered(o)
                   ? coveredVelocity_[coveredIndex_[o]]
                   : nbrVelocity_[bf],
-                    mag(nbrC[bf] - C[o])
+                    mag(nbrC[bf] - C[o]),
+                    t,
+                    dt,
+                    running
                 );
             }
             else
             {
-                keep(facei);
+                keepRamp(facei, t, running);
             }
         }
     }
     ramps_.transfer(running);
 
-    // (DebugSwitches { immersedBoundary 1; } in controlDict)
-    if (debug && ramps_.size())
-    {
-        scalar tauMin = GREAT, tauMax = 0, frozenMax = 0;
-        label nFresh = 0;
-        forAllConstIters(ramps_, iter)
-        {
-            const ramp& r = iter.val();
-            tauMin = min(tauMin, r.tau);
-            tauMax = max(tauMax, r.tau);
-            frozenMax = max(frozenMax, mag(r.frozen));
-            if (r.start > t - 1.5*dt)
-            {
-                ++nFresh;
-            }
-        }
-        Pout<< "immersedBoundary ramps at t = " << t << ": " << ramps_.size()
-            << " running (" << nFresh << " new), tau/dt "
-            << tauMin/dt << " to " << tauMax/dt << ", max |frozen flux| "
-            << frozenMax << endl;
-    }
+    reportRamps(t, dt);
 }
 
 
@@ -1396,27 +1568,19 @@ void Foam::immersedBoundary::constrainPressure
 }
 
 
-void Foam::immersedBoundary::wallValues
+void Foam::immersedBoundary::wallCellMatrices
 (
-    const volScalarField& p,
-    scalarField& internalWall,
-    scalarField& boundaryWall,
     Map<label>& wallCell,
-    vectorField& gradient
+    DynamicList<label>& wallCells,
+    DynamicList<tensor>& M
 ) const
 {
-    // Only the fluid cells beside the wall and their faces are visited (no
-    // field over all cells or faces)
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const vectorField& Sf = mesh_.faceAreas();
     const vectorField& Cf = mesh_.faceCentres();
     const vectorField& C = mesh_.cellCentres();
     const scalarField& V = mesh_.cellVolumes();
-    const surfaceScalarField& weights = mesh_.weights();
-    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-    const cellList& cells = mesh_.cells();
-    const label nInternal = mesh_.nInternalFaces();
 
     // M per fluid cell beside the wall: with the wall values
     // p_F + (x_f - x_F).g on its immersed faces, its Gauss gradient
@@ -1424,8 +1588,6 @@ void Foam::immersedBoundary::wallValues
     // Gauss gradient with p_F there (zero gradient at the wall)
     wallCell.clear();
     wallCell.resize(2*internalFaces_.size());
-    DynamicList<label> wallCells(internalFaces_.size());
-    DynamicList<tensor> M(internalFaces_.size());
     auto addFace = [&](const label F, const vector& S, const point& xf)
     {
         auto iter = wallCell.cfind(F);
@@ -1469,10 +1631,26 @@ void Foam::immersedBoundary::wallValues
             addFace(o, Sf[facei], Cf[facei]);
         }
     }
+}
 
-    // p across the coupled faces (all ranks take part)
-    scalarField pNbr;
-    syncTools::swapBoundaryCellList(mesh_, p.primitiveField(), pNbr);
+
+void Foam::immersedBoundary::wallCellGradients
+(
+    const volScalarField& p,
+    const scalarField& pNbr,
+    const labelUList& wallCells,
+    const UList<tensor>& M,
+    vectorField& gradient
+) const
+{
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const vectorField& Sf = mesh_.faceAreas();
+    const scalarField& V = mesh_.cellVolumes();
+    const surfaceScalarField& weights = mesh_.weights();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const cellList& cells = mesh_.cells();
+    const label nInternal = mesh_.nInternalFaces();
 
     // g0 of each wall cell: face values as linearInterpolate's, p_F on its
     // immersed faces; then g = (I - M)^-1 g0. Where I - M is near singular
@@ -1523,6 +1701,37 @@ void Foam::immersedBoundary::wallValues
         const tensor A(I - M[k]);
         gradient[k] = mag(det(A)) > 0.1 ? (inv(A) & g0) : g0;
     }
+}
+
+
+void Foam::immersedBoundary::wallValues
+(
+    const volScalarField& p,
+    scalarField& internalWall,
+    scalarField& boundaryWall,
+    Map<label>& wallCell,
+    vectorField& gradient
+) const
+{
+    // Only the fluid cells beside the wall and their faces are visited (no
+    // field over all cells or faces)
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const vectorField& Cf = mesh_.faceCentres();
+    const vectorField& C = mesh_.cellCentres();
+    const label nInternal = mesh_.nInternalFaces();
+
+    // M per fluid cell beside the wall (wallCellMatrices)
+    DynamicList<label> wallCells(internalFaces_.size());
+    DynamicList<tensor> M(internalFaces_.size());
+    wallCellMatrices(wallCell, wallCells, M);
+
+    // p across the coupled faces (all ranks take part)
+    scalarField pNbr;
+    syncTools::swapBoundaryCellList(mesh_, p.primitiveField(), pNbr);
+
+    // g of each wall cell (wallCellGradients)
+    wallCellGradients(p, pNbr, wallCells, M, gradient);
 
     // The wall values with those gradients
     internalWall.setSize(internalFaces_.size());
@@ -1703,32 +1912,24 @@ Foam::tmp<Foam::volVectorField> Foam::immersedBoundary::correctPressure
 }
 
 
-Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
+void Foam::immersedBoundary::internalTraction
 (
     const volScalarField& p,
     const volVectorField& U,
     const volScalarField& nu,
     const scalar rhoFluid,
+    const scalarField& internalWall,
+    const Map<label>& wallCell,
+    const vectorField& gradp,
+    vectorField& t,
     vector& coveredGradP
 ) const
 {
-    tmp<vectorField> tt(new vectorField(coveredCells_.size(), Zero));
-    vectorField& t = tt.ref();
-    coveredGradP = Zero;
-
-    scalarField internalWall;
-    scalarField boundaryWall;
-    Map<label> wallCell;
-    vectorField gradp;
-    wallValues(p, internalWall, boundaryWall, wallCell, gradp);
-
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const vectorField& Sf = mesh_.faceAreas();
     const surfaceScalarField& delta = mesh_.nonOrthDeltaCoeffs();
     const vectorField& Cc = mesh_.cellCentres();
-    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
-    const label nInternal = mesh_.nInternalFaces();
 
     forAll(internalFaces_, facej)
     {
@@ -1760,14 +1961,30 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
             );
         coveredGradP += internalWall[facej]*S;
     }
+}
 
-    // Coupled faces: U and nu across them, and for the wall point the
-    // fluid cell's p, centre and wall gradient g_F (all ranks take part;
-    // none where no rank has such a face, as in a serial run)
-    if (!returnReduce(boundaryFaces_.size(), sumOp<label>()))
-    {
-        return tt;
-    }
+
+void Foam::immersedBoundary::coupledTraction
+(
+    const volScalarField& p,
+    const volVectorField& U,
+    const volScalarField& nu,
+    const scalar rhoFluid,
+    const scalarField& boundaryWall,
+    const Map<label>& wallCell,
+    const vectorField& gradp,
+    vectorField& t,
+    vector& coveredGradP
+) const
+{
+    const vectorField& Sf = mesh_.faceAreas();
+    const surfaceScalarField& delta = mesh_.nonOrthDeltaCoeffs();
+    const vectorField& Cc = mesh_.cellCentres();
+    const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
+    const label nInternal = mesh_.nInternalFaces();
+
+    // U and nu across the coupled faces, and for the wall point the fluid
+    // cell's p, centre and wall gradient g_F (collective)
     vectorField Unbr;
     scalarField nuNbr;
     syncTools::swapBoundaryCellList(mesh_, U.primitiveField(), Unbr);
@@ -1816,6 +2033,44 @@ Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
             );
         coveredGradP += boundaryWall[j]*S;
     }
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::immersedBoundary::traction
+(
+    const volScalarField& p,
+    const volVectorField& U,
+    const volScalarField& nu,
+    const scalar rhoFluid,
+    vector& coveredGradP
+) const
+{
+    tmp<vectorField> tt(new vectorField(coveredCells_.size(), Zero));
+    vectorField& t = tt.ref();
+    coveredGradP = Zero;
+
+    scalarField internalWall;
+    scalarField boundaryWall;
+    Map<label> wallCell;
+    vectorField gradp;
+    wallValues(p, internalWall, boundaryWall, wallCell, gradp);
+
+    internalTraction
+    (
+        p, U, nu, rhoFluid, internalWall, wallCell, gradp, t, coveredGradP
+    );
+
+    // Coupled faces: U and nu across them, and for the wall point the
+    // fluid cell's p, centre and wall gradient g_F (all ranks take part;
+    // none where no rank has such a face, as in a serial run)
+    if (!returnReduce(boundaryFaces_.size(), sumOp<label>()))
+    {
+        return tt;
+    }
+    coupledTraction
+    (
+        p, U, nu, rhoFluid, boundaryWall, wallCell, gradp, t, coveredGradP
+    );
 
     return tt;
 }

@@ -562,7 +562,7 @@ void Foam::functionObjects::valveMetrics::solidLoads
 
 void Foam::functionObjects::valveMetrics::writeFileHeader(Ostream& os)
 {
-    writeHeader(os, "Valve metrics (src/fsiCoupling/valveMetrics)");
+    writeHeader(os, "Valve metrics (src/fsiCoupling/functionObjects/valveMetrics)");
     writeHeaderValue(os, "rho [kg/m3]", rho_);
     writeHeaderValue(os, "mu [Pa s]", mu_);
     writeHeaderValue

@@ -6,6 +6,7 @@
 #include "deformableSolid.H"
 #include "fvMatrices.H"
 #include "readEnumEntry.H"
+#include "checkRemovedEntries.H"
 #include "tetIndices.H"
 #include "clockTime.H"
 #include "syncTools.H"
@@ -739,6 +740,45 @@ Foam::fv::immersedElasticForce::immersedElasticForce
 {
     read(dict);
 
+    checkSolid();
+
+    const label n = solidPtr_->nPoints();
+    free_ = solidPtr_->freeComponents();
+    const label nq = n + (elementPoints_ ? solidPtr_->nElements() : 0);
+    nodeCell_.setSize(nq, -1);
+    hint_.setSize(nq, -1);
+    nodePoints_.setSize(nq);
+    nodeWeights_.setSize(nq);
+    if (elementPoints_)
+    {
+        setElementPoints();
+    }
+
+    readState(mesh.time().timePath()/"uniform"/"immersedSolid");
+    if (tetherRelaxation_ > 0 || tetherStiffness_ > 0)
+    {
+        forAll(free_, i)
+        {
+            tethered_[i] = (cmptSum(free_[i]) == 0);
+        }
+    }
+    setPointData();
+    search_.reset(new meshSearch(mesh, polyMesh::CELL_TETS));
+    updateStencils();
+    setTetherMobility();
+    // the force of the start time: on a restart with the tethers' state,
+    // as the interrupted run had it for this step
+    spreadForce(lastVelocity_, false);
+
+    report();
+
+    // the solid's output at the start time
+    solidPtr_->write(true);
+}
+
+
+void Foam::fv::immersedElasticForce::checkSolid() const
+{
     if (!solid_)
     {
         FatalIOErrorInFunction(solidPtr_->dict())
@@ -764,50 +804,46 @@ Foam::fv::immersedElasticForce::immersedElasticForce
             << " 1000), or use type immersedForcing for a denser solid"
             << exit(FatalIOError);
     }
+}
 
+
+void Foam::fv::immersedElasticForce::setElementPoints()
+{
     const label n = solidPtr_->nPoints();
-    free_ = solidPtr_->freeComponents();
-    const label nq = n + (elementPoints_ ? solidPtr_->nElements() : 0);
-    nodeCell_.setSize(nq, -1);
-    hint_.setSize(nq, -1);
-    nodePoints_.setSize(nq);
-    nodeWeights_.setSize(nq);
-    if (elementPoints_)
+    // the elements' reference volumes and the nodes' elements
+    const List<solidTet>& tets = solidPtr_->elements();
+    const pointField& X = solidPtr_->points0();
+    elementVolume_.setSize(tets.size());
+    List<DynamicList<label>> around(n);
+    forAll(tets, e)
     {
-        // the elements' reference volumes and the nodes' elements
-        const List<solidTet>& tets = solidPtr_->elements();
-        const pointField& X = solidPtr_->points0();
-        elementVolume_.setSize(tets.size());
-        List<DynamicList<label>> around(n);
-        forAll(tets, e)
+        const solidTet& t = tets[e];
+        elementVolume_[e] = mag
+        (
+            ((X[t[1]] - X[t[0]]) ^ (X[t[2]] - X[t[0]])) & (X[t[3]] - X[t[0]])
+        )/6;
+        for (const label a : t)
         {
-            const solidTet& t = tets[e];
-            elementVolume_[e] = mag
-            (
-                ((X[t[1]] - X[t[0]]) ^ (X[t[2]] - X[t[0]])) & (X[t[3]] - X[t[0]])
-            )/6;
-            for (const label a : t)
-            {
-                around[a].append(e);
-            }
-        }
-        nodeElements_.setSize(n);
-        nodeElementVolume_.setSize(n, 0);
-        forAll(around, a)
-        {
-            nodeElements_[a].transfer(around[a]);
-            for (const label e : nodeElements_[a])
-            {
-                nodeElementVolume_[a] += elementVolume_[e];
-            }
+            around[a].append(e);
         }
     }
+    nodeElements_.setSize(n);
+    nodeElementVolume_.setSize(n, 0);
+    forAll(around, a)
+    {
+        nodeElements_[a].transfer(around[a]);
+        for (const label e : nodeElements_[a])
+        {
+            nodeElementVolume_[a] += elementVolume_[e];
+        }
+    }
+}
 
+
+void Foam::fv::immersedElasticForce::readState(const fileName& stateDir)
+{
+    const label n = solidPtr_->nPoints();
     // A restart: the solid's state of the start time
-    const fileName stateDir
-    (
-        mesh.time().timePath()/"uniform"/"immersedSolid"
-    );
     if (solidPtr_->readState(stateDir))
     {
         Info<< type() << ' ' << name_ << ": solid state read from "
@@ -843,21 +879,12 @@ Foam::fv::immersedElasticForce::immersedElasticForce
         }
         (file == "tetherDrift" ? tetherDrift_ : lastVelocity_) = values;
     }
-    if (tetherRelaxation_ > 0 || tetherStiffness_ > 0)
-    {
-        forAll(free_, i)
-        {
-            tethered_[i] = (cmptSum(free_[i]) == 0);
-        }
-    }
-    setPointData();
-    search_.reset(new meshSearch(mesh, polyMesh::CELL_TETS));
-    updateStencils();
-    setTetherMobility();
-    // the force of the start time: on a restart with the tethers' state,
-    // as the interrupted run had it for this step
-    spreadForce(lastVelocity_, false);
+}
 
+
+void Foam::fv::immersedElasticForce::report() const
+{
+    const label n = solidPtr_->nPoints();
     label fixedNodes = 0;
     forAll(free_, i)
     {
@@ -876,9 +903,6 @@ Foam::fv::immersedElasticForce::immersedElasticForce
         << " take their centre's value from their points; force on the fluid "
         << fluidForce_ << " N, on the walls " << wallForce_ << " N" << nl
         << endl;
-
-    // the solid's output at the start time
-    solidPtr_->write(true);
 }
 
 
@@ -1017,6 +1041,21 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
         fieldNames_ = wordList(1, word("U"));
     }
     applied_.setSize(fieldNames_.size(), false);
+    checkRemovedEntries
+    (
+        coeffs_,
+        {
+            {"balancedForce", "the force is always balanced by the face"
+                " pressure (remove the entry)"},
+            {"nodeVelocity", "the nodes always move with the face flux's"
+                " reconstruction (remove the entry)"},
+            {"deviatoricOnly", "the whole stress of the leaflets enters"
+                " (remove the entry)"},
+            {"noSlipPoints", "the held nodes hold the fluid through"
+                " tetherRelaxation and tetherStiffness (remove the entry)"}
+        },
+        "fvOption " + name_
+    );
     rhoFluid_ = coeffs_.get<scalar>("rhoFluid");
     if (!(rhoFluid_ > 0))
     {
