@@ -37,7 +37,7 @@ Foam::immersedPairs::immersedPairs
 )
 :
     mesh_(mesh),
-    search_(mesh, polyMesh::CELL_TETS),
+    locator_(mesh, dict.getOrDefault<label>("maxWalk", 100)),
     centreTree_(),
     cellBoxTree_(),
     coverage_
@@ -45,14 +45,9 @@ Foam::immersedPairs::immersedPairs
         coverageTypeNames.getOrDefault("coverage", dict, coverageType::centre)
     ),
 
-    maxWalk_(dict.getOrDefault<label>("maxWalk", 100)),
     boundaryTolerance_(dict.getOrDefault<scalar>("boundaryTolerance", 0.25)),
     maxBoundaryDistance_(0),
     nodeCell_(),
-    nSteps_(0),
-    nWalks_(0),
-    nFallback_(0),
-    nLeft_(0),
     nOnBoundary_(0),
     maxOutside_(0),
     candidates_(),
@@ -106,102 +101,10 @@ Foam::immersedPairs::immersedPairs
     (
         new indexedOctree<treeDataPoint>(treeDataPoint(C), bb, 10, 10.0, 3.0)
     );
-
-    // Cell-face addressing once (the walk uses it)
-    mesh_.cells();
 }
 
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
-
-Foam::label Foam::immersedPairs::walk
-(
-    const point& p,
-    const label start,
-    label& steps
-) const
-{
-    const vectorField& Cf = mesh_.faceCentres();
-    const vectorField& Sf = mesh_.faceAreas();
-    const vectorField& C = mesh_.cellCentres();
-    const labelList& own = mesh_.faceOwner();
-    const labelList& nei = mesh_.faceNeighbour();
-    const cellList& cells = mesh_.cells();
-
-    label c = start;
-    for (label k = 0; k <= maxWalk_; ++k)
-    {
-        if (inside(p, c))
-        {
-            return c;
-        }
-
-        // The face the point is most outside of, relative to the cell
-        // centre's distance to the face plane (Eq. 51 on tets)
-        scalar best = 0;
-        label bestFace = -1;
-        for (const label facei : cells[c])
-        {
-            const vector n(own[facei] == c ? Sf[facei] : -Sf[facei]);
-            const scalar dc = (Cf[facei] - C[c]) & n;
-            const scalar o = ((p - Cf[facei]) & n)/max(dc, VSMALL);
-            if (o > best)
-            {
-                best = o;
-                bestFace = facei;
-            }
-        }
-        if (bestFace >= 0 && !mesh_.isInternalFace(bestFace))
-        {
-            const label patchi =
-                mesh_.boundaryMesh().whichPatch(bestFace);
-            if (isA<processorPolyPatch>(mesh_.boundaryMesh()[patchi]))
-            {
-                // Most likely on the neighbouring rank
-                return -2;
-            }
-        }
-        if (bestFace < 0 || !mesh_.isInternalFace(bestFace))
-        {
-            // No face plane separates the point (a non-convex cell or
-            // warped faces, e.g. polyDualMesh) or the best face is on the
-            // boundary: test the face neighbours, most-outside face first
-            const cell& cFaces = cells[c];
-            List<Tuple2<scalar, label>> order(cFaces.size());
-            forAll(cFaces, i)
-            {
-                const label facei = cFaces[i];
-                const vector n(own[facei] == c ? Sf[facei] : -Sf[facei]);
-                const scalar dc = (Cf[facei] - C[c]) & n;
-                order[i] = Tuple2<scalar, label>
-                (
-                    -((p - Cf[facei]) & n)/max(dc, VSMALL),
-                    facei
-                );
-            }
-            Foam::sort(order);
-            for (const Tuple2<scalar, label>& o : order)
-            {
-                const label facei = o.second();
-                if (mesh_.isInternalFace(facei))
-                {
-                    const label nb =
-                        (own[facei] == c ? nei[facei] : own[facei]);
-                    if (inside(p, nb))
-                    {
-                        ++steps;
-                        return nb;
-                    }
-                }
-            }
-            return -1;
-        }
-        c = (own[bestFace] == c ? nei[bestFace] : own[bestFace]);
-        ++steps;
-    }
-    return -1;
-}
-
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
@@ -225,65 +128,6 @@ Foam::immersedPairs::tetWeights Foam::immersedPairs::barycentric
 }
 
 
-Foam::labelList Foam::immersedPairs::walkNodes(const pointField& x)
-{
-    // each node's cell of this rank: a walk from its last cell, the mesh
-    // search where the walk fails (-1: none here)
-    labelList cells(x.size(), -1);
-    forAll(x, i)
-    {
-        label c = -1;
-        if (nodeCell_[i] >= 0)
-        {
-            ++nWalks_;
-            c = walk(x[i], nodeCell_[i], nSteps_);
-            if (c == -2)
-            {
-                ++nLeft_;
-            }
-            else if (c < 0)
-            {
-                ++nFallback_;
-            }
-        }
-        if (c < 0)
-        {
-            c = search_.findCell(x[i], -1, true);
-        }
-        cells[i] = c;
-    }
-    return cells;
-}
-
-
-Foam::labelList Foam::immersedPairs::ownNodes(labelList& cells) const
-{
-    // Each node to one rank: the lowest of those whose cells contain it
-    // (labelMax: none); the other ranks drop their cell of it
-    labelList owner(cells.size(), labelMax);
-    forAll(cells, i)
-    {
-        if (cells[i] >= 0)
-        {
-            owner[i] = Pstream::myProcNo();
-        }
-    }
-    if (Pstream::parRun())
-    {
-        Pstream::listCombineGather(owner, minEqOp<label>());
-        Pstream::listCombineScatter(owner);
-        forAll(cells, i)
-        {
-            if (owner[i] != Pstream::myProcNo())
-            {
-                cells[i] = -1;
-            }
-        }
-    }
-    return owner;
-}
-
-
 void Foam::immersedPairs::placeOnBoundary
 (
     const pointField& x,
@@ -301,18 +145,20 @@ void Foam::immersedPairs::placeOnBoundary
     // node is in a cell.)
     nOnBoundary_ = 0;
     maxOutside_ = 0;
-    if (!owner.found(labelMax))
+    const label none = Pstream::nProcs();
+    if (!owner.found(none))
     {
         return;
     }
     const label n = x.size();
-    const indexedOctree<treeDataFace>& bTree = search_.boundaryTree();
+    const indexedOctree<treeDataFace>& bTree =
+        locator_.search().boundaryTree();
     const polyBoundaryMesh& pbm = mesh_.boundaryMesh();
     scalarField dist(n, GREAT);
     labelList nearCell(n, -1);
     forAll(owner, i)
     {
-        if (owner[i] != labelMax)
+        if (owner[i] != none)
         {
             continue;
         }
@@ -356,7 +202,7 @@ void Foam::immersedPairs::placeOnBoundary
     }
     forAll(owner, i)
     {
-        if (owner[i] == labelMax && nearOwner[i] != labelMax)
+        if (owner[i] == none && nearOwner[i] != labelMax)
         {
             owner[i] = nearOwner[i];
             ++nOnBoundary_;
@@ -364,6 +210,7 @@ void Foam::immersedPairs::placeOnBoundary
             if (nearOwner[i] == Pstream::myProcNo())
             {
                 cells[i] = nearCell[i];
+                locator_.setHint(i, nearCell[i]);
             }
         }
     }
@@ -380,7 +227,7 @@ void Foam::immersedPairs::checkImmersed
     label firstMissing = -1;
     forAll(owner, i)
     {
-        if (owner[i] == labelMax)
+        if (owner[i] == Pstream::nProcs())
         {
             if (firstMissing < 0)
             {
@@ -409,17 +256,8 @@ void Foam::immersedPairs::checkImmersed
 
 void Foam::immersedPairs::findNodeCells(const pointField& x)
 {
-    if (nodeCell_.size() != x.size())
-    {
-        nodeCell_ = labelList(x.size(), -1);
-    }
-    nSteps_ = 0;
-    nWalks_ = 0;
-    nFallback_ = 0;
-    nLeft_ = 0;
-
-    labelList cells(walkNodes(x));
-    labelList owner(ownNodes(cells));
+    labelList cells;
+    labelList owner(locator_.locate(x, cells));
     placeOnBoundary(x, owner, cells);
     checkImmersed(x, owner);
     nodeCell_.transfer(cells);

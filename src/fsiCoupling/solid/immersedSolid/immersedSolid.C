@@ -235,4 +235,22 @@ void Foam::immersedSolid::setState
 }
 
 
+bool Foam::immersedSolid::restart(const string& owner)
+{
+    const fileName dir(stateDir());
+    if (readState(dir))
+    {
+        Info<< owner.c_str() << ": solid state read from " << dir
+            << " (t = " << time() << ")" << endl;
+        return true;
+    }
+    if (isDeformable())
+    {
+        Info<< owner.c_str() << ": no solid state in " << dir
+            << ": the solid starts from its mesh, at rest" << endl;
+    }
+    return false;
+}
+
+
 // ************************************************************************* //

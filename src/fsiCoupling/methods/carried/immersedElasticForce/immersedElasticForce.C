@@ -79,12 +79,6 @@ void Foam::fv::immersedElasticForce::setPointData()
         }
     }
     smallCells_ = returnReduce(nSmall, sumOp<label>());
-
-    bounds_ = mesh_.bounds();
-    if (mesh_.nCells())
-    {
-        bounds_.inflate(0.01);
-    }
 }
 
 
@@ -110,44 +104,6 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::pointVelocity
         up[pointi] /= pointVolume_[pointi];
     }
     return tup;
-}
-
-
-Foam::label Foam::fv::immersedElasticForce::walk
-(
-    const point& x,
-    const label hint
-) const
-{
-    if (hint >= 0)
-    {
-        if (mesh_.pointInCell(x, hint, polyMesh::CELL_TETS))
-        {
-            return hint;
-        }
-        for (const label nbr : mesh_.cellCells()[hint])
-        {
-            if (mesh_.pointInCell(x, nbr, polyMesh::CELL_TETS))
-            {
-                return nbr;
-            }
-        }
-    }
-    return -1;
-}
-
-
-Foam::label Foam::fv::immersedElasticForce::treeSearch
-(
-    const point& x,
-    const label hint
-) const
-{
-    if (!bounds_.contains(x))
-    {
-        return -1;
-    }
-    return search_->findCell(x, hint, true);
 }
 
 
@@ -258,63 +214,32 @@ bool Foam::fv::immersedElasticForce::keepsStencil(const label i) const
 
 Foam::labelList Foam::fv::immersedElasticForce::locate(const pointField& x)
 {
-    const label n = x.size();
     const label nNodes = solidPtr_->nPoints();
 
-    // the local cell of every free transfer point, then the lowest rank
-    // holding it. First a walk from the point's last cell, which finds
-    // nearly every point (it moves less than a cell per step); then the
-    // octree on every rank for the points no rank found so (in parallel,
-    // a point held by another rank would otherwise be looked for in this
-    // rank's octree at every step). A held node that is not a tether gets
-    // no stencil (rank -1); centroids are free
-    labelList rank(n, Pstream::nProcs());
-    boolList unfound(n, false);
+    // the local cell of every free transfer point and the lowest rank
+    // holding it (immersedPointLocator). A tether keeps its first stencil;
+    // a held node that is not a tether gets no stencil (rank -1);
+    // centroids are free
+    boolList active(x.size(), true);
+    forAll(x, i)
+    {
+        active[i] =
+            !keepsStencil(i)
+         && !(i < nNodes && cmptSum(free_[i]) == 0 && !tethered_[i]);
+    }
+    labelList cells;
+    labelList rank(locator_->locate(x, cells, active));
     forAll(x, i)
     {
         if (keepsStencil(i))
         {
             rank[i] = tetherRank_[i];
-            continue;
-        }
-        nodeCell_[i] = -1;
-        if (i < nNodes && cmptSum(free_[i]) == 0 && !tethered_[i])
-        {
-            rank[i] = -1;
-            continue;
-        }
-        const label celli = walk(x[i], hint_[i]);
-        if (celli >= 0)
-        {
-            nodeCell_[i] = celli;
-            hint_[i] = celli;
-            rank[i] = Pstream::myProcNo();
         }
         else
         {
-            unfound[i] = true;
+            nodeCell_[i] = cells[i];
         }
     }
-    if (Pstream::parRun())
-    {
-        Pstream::listCombineGather(rank, minEqOp<label>());
-        Pstream::listCombineScatter(rank);
-    }
-    forAll(x, i)
-    {
-        if (unfound[i] && rank[i] == Pstream::nProcs())
-        {
-            const label celli = treeSearch(x[i], hint_[i]);
-            if (celli >= 0)
-            {
-                nodeCell_[i] = celli;
-                hint_[i] = celli;
-                rank[i] = Pstream::myProcNo();
-            }
-        }
-    }
-    Pstream::listCombineGather(rank, minEqOp<label>());
-    Pstream::listCombineScatter(rank);
     return rank;
 }
 
@@ -345,8 +270,12 @@ void Foam::fv::immersedElasticForce::placeOutside
             }
             if (mesh_.nCells())
             {
-                const label c =
-                    search_->findNearestCell(x[i], hint_[i], true);
+                const label c = locator_->search().findNearestCell
+                (
+                    x[i],
+                    locator_->hint(i),
+                    true
+                );
                 nearestCell[i] = c;
                 nearest[i] = mag(mesh_.cellCentres()[c] - x[i]);
             }
@@ -377,7 +306,7 @@ void Foam::fv::immersedElasticForce::placeOutside
             if (owner[i] == Pstream::myProcNo())
             {
                 nodeCell_[i] = nearestCell[i];
-                hint_[i] = nearestCell[i];
+                locator_->setHint(i, nearestCell[i]);
             }
         }
     }
@@ -696,12 +625,10 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     nodeElementVolume_(),
     elementVolume_(),
     nodeCell_(),
-    hint_(),
     nodePoints_(),
     nodeWeights_(),
     pointVolume_(),
-    search_(),
-    bounds_(),
+    locator_(),
     ownCentre_(),
     smallCell_(0.2),
     smallCells_(0),
@@ -746,7 +673,6 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     free_ = solidPtr_->freeComponents();
     const label nq = n + (elementPoints_ ? solidPtr_->nElements() : 0);
     nodeCell_.setSize(nq, -1);
-    hint_.setSize(nq, -1);
     nodePoints_.setSize(nq);
     nodeWeights_.setSize(nq);
     if (elementPoints_)
@@ -754,7 +680,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
         setElementPoints();
     }
 
-    readState(mesh.time().timePath()/"uniform"/"immersedSolid");
+    readState(solidPtr_->stateDir());
     if (tetherRelaxation_ > 0 || tetherStiffness_ > 0)
     {
         forAll(free_, i)
@@ -763,7 +689,8 @@ Foam::fv::immersedElasticForce::immersedElasticForce
         }
     }
     setPointData();
-    search_.reset(new meshSearch(mesh, polyMesh::CELL_TETS));
+    // the sharp method's walk limit (immersedPairs' maxWalk default)
+    locator_.reset(new immersedPointLocator(mesh, 100));
     updateStencils();
     setTetherMobility();
     // the force of the start time: on a restart with the tethers' state,
@@ -844,16 +771,7 @@ void Foam::fv::immersedElasticForce::readState(const fileName& stateDir)
 {
     const label n = solidPtr_->nPoints();
     // A restart: the solid's state of the start time
-    if (solidPtr_->readState(stateDir))
-    {
-        Info<< type() << ' ' << name_ << ": solid state read from "
-            << stateDir << " (t = " << solidPtr_->time() << ")" << endl;
-    }
-    else
-    {
-        Info<< type() << ' ' << name_ << ": no solid state in " << stateDir
-            << ": the solid starts from its mesh, at rest" << endl;
-    }
+    solidPtr_->restart(type() + ' ' + name_);
 
     tethered_.setSize(n, false);
     tetherDrift_.setSize(n, Zero);
@@ -1001,7 +919,7 @@ void Foam::fv::immersedElasticForce::write()
     {
         return;
     }
-    const fileName dir(runTime.timePath()/"uniform"/"immersedSolid");
+    const fileName dir(solidPtr_->stateDir());
     solidPtr_->writeState(dir);
     // the tethers' state (drift and the last update's velocity) goes with
     // the solid's

@@ -301,7 +301,7 @@ void Foam::fv::immersedForcing::write()
     {
         return;
     }
-    const fileName dir(runTime.timePath()/"uniform"/"immersedSolid");
+    const fileName dir(coupling_.solid().stateDir());
     coupling_.solid().writeState(dir);
     boundary_.writeRamps(dir/"coverRamps");
     scheme_->writeState(dir);
@@ -892,19 +892,9 @@ void Foam::fv::immersedForcing::writeDiagnostics()
 }
 
 
-void Foam::fv::immersedForcing::readSolidState(const fileName& stateDir)
+void Foam::fv::immersedForcing::readSolidState()
 {
-    if (coupling_.solid().readState(stateDir))
-    {
-        Info<< type() << ' ' << name_ << ": solid state read from "
-            << stateDir << " (t = " << coupling_.solid().time() << ")"
-            << endl;
-    }
-    else if (coupling_.solid().isDeformable())
-    {
-        Info<< type() << ' ' << name_ << ": no solid state in " << stateDir
-            << ": the solid starts from its mesh, at rest" << endl;
-    }
+    coupling_.solid().restart(type() + ' ' + name_);
     velocities0_ = coupling_.solid().velocities();
 }
 
@@ -928,6 +918,40 @@ void Foam::fv::immersedForcing::initialCoverage()
 }
 
 
+Foam::IOobject Foam::fv::immersedForcing::writtenField
+(
+    const word& name,
+    const fvMesh& mesh
+)
+{
+    return IOobject
+    (
+        name,
+        mesh.time().timeName(),
+        mesh,
+        IOobject::NO_READ,
+        IOobject::AUTO_WRITE
+    );
+}
+
+
+void Foam::fv::immersedForcing::checkSingle(const dictionary& dict) const
+{
+    if
+    (
+        mesh_.findObject<immersedBoundary>(immersedBoundary::typeName)
+     != &boundary_
+    )
+    {
+        FatalIOErrorInFunction(dict)
+            << "fvOption " << name_ << ": a second immersedForcing option on"
+            << " mesh " << mesh_.name() << "; one immersed solid per mesh is"
+            << " supported: put all solid parts in one constant/"
+            << "solidProperties mesh" << exit(FatalIOError);
+    }
+}
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::fv::immersedForcing::immersedForcing
@@ -942,28 +966,14 @@ Foam::fv::immersedForcing::immersedForcing
     coupling_(mesh),
     coverage_
     (
-        IOobject
-        (
-            "immersedCoverage",
-            mesh.time().timeName(),
-            mesh,
-            IOobject::NO_READ,
-            IOobject::AUTO_WRITE
-        ),
+        writtenField("immersedCoverage", mesh),
         mesh,
         dimensionedScalar(dimless, Zero),
         "zeroGradient"
     ),
     solidFraction_
     (
-        IOobject
-        (
-            "immersedSolidFraction",
-            mesh.time().timeName(),
-            mesh,
-            IOobject::NO_READ,
-            IOobject::AUTO_WRITE
-        ),
+        writtenField("immersedSolidFraction", mesh),
         mesh,
         dimensionedScalar(dimless, Zero),
         "zeroGradient"
@@ -1006,19 +1016,7 @@ Foam::fv::immersedForcing::immersedForcing
     )
 {
     read(dict);
-
-    if
-    (
-        mesh.findObject<immersedBoundary>(immersedBoundary::typeName)
-     != &boundary_
-    )
-    {
-        FatalIOErrorInFunction(dict)
-            << "fvOption " << name_ << ": a second immersedForcing option on"
-            << " mesh " << mesh.name() << "; one immersed solid per mesh is"
-            << " supported: put all solid parts in one constant/"
-            << "solidProperties mesh" << exit(FatalIOError);
-    }
+    checkSingle(dict);
 
     // The solid's surface, element by element (the wall location)
     coupling_.solid().surface
@@ -1029,11 +1027,8 @@ Foam::fv::immersedForcing::immersedForcing
     // A restart: the solid's state of the start time, then the coverage
     // of its configuration, the running covering ramps and the coupling
     // scheme's state
-    const fileName stateDir
-    (
-        mesh.time().timePath()/"uniform"/"immersedSolid"
-    );
-    readSolidState(stateDir);
+    const fileName stateDir(coupling_.solid().stateDir());
+    readSolidState();
     initialCoverage();
     boundary_.readRamps(stateDir/"coverRamps");
     scheme_->readState(stateDir, coupling_.solid().nPoints());
