@@ -3,8 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "immersedForces.H"
-#include "immersedForcing.H"
-#include "immersedBoundary.H"
+#include "immersedMethod.H"
 #include "fvOptions.H"
 #include "volFields.H"
 #include "singlePhaseTransportModel.H"
@@ -25,25 +24,26 @@ namespace functionObjects
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-Foam::vector Foam::functionObjects::immersedForces::solidForce() const
+Foam::UPtrList<const Foam::fv::immersedMethod>
+Foam::functionObjects::immersedForces::methods() const
 {
-    if (!solid_ || !mesh_.foundObject<fv::options>("fvOptions"))
+    UPtrList<const fv::immersedMethod> methods;
+    if (!mesh_.foundObject<fv::options>("fvOptions"))
     {
-        return Zero;
+        return methods;
     }
     const fv::optionList& opts =
         mesh_.lookupObject<fv::options>("fvOptions");
-    vector F(Zero);
     forAll(opts, i)
     {
-        const fv::immersedForcing* f =
-            dynamic_cast<const fv::immersedForcing*>(&opts[i]);
-        if (f)
+        const fv::immersedMethod* m =
+            dynamic_cast<const fv::immersedMethod*>(&opts[i]);
+        if (m)
         {
-            F += f->force();
+            methods.append(m);
         }
     }
-    return F;
+    return methods;
 }
 
 
@@ -105,8 +105,18 @@ bool Foam::functionObjects::immersedForces::execute()
     const singlePhaseTransportModel& transport =
         lookupObject<singlePhaseTransportModel>("transportProperties");
     const tmp<volScalarField> tnu(transport.nu());
-    const immersedBoundary* ib =
-        mesh_.findObject<immersedBoundary>(immersedBoundary::typeName);
+    const UPtrList<const fv::immersedMethod> methods(this->methods());
+    const auto covered = [&methods](const label celli)
+    {
+        for (const fv::immersedMethod& m : methods)
+        {
+            if (m.covers(celli))
+            {
+                return true;
+            }
+        }
+        return false;
+    };
 
     patchForce_ = Zero;
     for (const label patchi : patches_)
@@ -120,7 +130,7 @@ bool Foam::functionObjects::immersedForces::execute()
         const labelUList& cells = fp.faceCells();
         forAll(Sf, facei)
         {
-            if (ib && ib->covered(cells[facei]))
+            if (covered(cells[facei]))
             {
                 continue;
             }
@@ -129,7 +139,14 @@ bool Foam::functionObjects::immersedForces::execute()
         }
     }
     reduce(patchForce_, sumOp<vector>());
-    solidForce_ = solidForce();
+    solidForce_ = Zero;
+    if (solid_)
+    {
+        for (const fv::immersedMethod& m : methods)
+        {
+            solidForce_ += m.fluidForceOnSolid();
+        }
+    }
     total_ = patchForce_ + solidForce_;
     Log << type() << ' ' << name() << ": force " << total_ << " (patches "
         << patchForce_ << ", immersed solid " << solidForce_ << ")" << endl;

@@ -107,4 +107,10 @@ Foam::fv::immersedMethod::balancedForce() const
 }
 
 
+bool Foam::fv::immersedMethod::covers(const label) const
+{
+    return false;
+}
+
+
 // ************************************************************************* //

@@ -7,9 +7,7 @@
 #include "fvMatrices.H"
 #include "readEnumEntry.H"
 #include "checkRemovedEntries.H"
-#include "tetIndices.H"
 #include "clockTime.H"
-#include "syncTools.H"
 #include "OFstream.H"
 #include "IFstream.H"
 #include "addToRunTimeSelectionTable.H"
@@ -34,78 +32,6 @@ Foam::fv::immersedElasticForce::pointSetNames
 
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
-
-void Foam::fv::immersedElasticForce::setPointData()
-{
-    const scalarField& V = mesh_.V();
-    const labelListList& pointCells = mesh_.pointCells();
-    pointVolume_.setSize(mesh_.nPoints());
-    forAll(pointCells, pointi)
-    {
-        scalar sum = 0;
-        for (const label celli : pointCells[pointi])
-        {
-            sum += V[celli];
-        }
-        pointVolume_[pointi] = sum;
-    }
-    syncTools::syncPointList(mesh_, pointVolume_, plusEqOp<scalar>(), 0.0);
-
-    // A cell's centre carries its own value unless the cell is much
-    // smaller than the cells around it: with its own value a node's force
-    // density in it is F/(rho V_c), and a sliver tet beside the root wall
-    // (checkMesh: determinant below 1e-3) blew the fluid up there; such a
-    // cell's centre takes the mean of its points', whose force densities
-    // are bounded by the points' cell volumes
-    ownCentre_.setSize(mesh_.nCells());
-    label nSmall = 0;
-    forAll(V, celli)
-    {
-        const labelList& cPoints = mesh_.cellPoints()[celli];
-        scalar around = 0;
-        label count = 0;
-        for (const label pointi : cPoints)
-        {
-            around += pointVolume_[pointi];
-            count += mesh_.pointCells()[pointi].size();
-        }
-        // the mean volume of the cells around (point-neighbours, all ranks
-        // for the points' volumes; the counts are this rank's: a bound)
-        const scalar mean = around/max(count, label(1));
-        ownCentre_[celli] = (V[celli] >= smallCell_*mean);
-        if (!ownCentre_[celli])
-        {
-            ++nSmall;
-        }
-    }
-    smallCells_ = returnReduce(nSmall, sumOp<label>());
-}
-
-
-Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::pointVelocity
-(
-    const vectorField& u
-) const
-{
-    const scalarField& V = mesh_.V();
-    const labelListList& pointCells = mesh_.pointCells();
-    tmp<vectorField> tup(new vectorField(mesh_.nPoints(), Zero));
-    vectorField& up = tup.ref();
-    forAll(pointCells, pointi)
-    {
-        for (const label celli : pointCells[pointi])
-        {
-            up[pointi] += V[celli]*u[celli];
-        }
-    }
-    syncTools::syncPointList(mesh_, up, plusEqOp<vector>(), vector::zero);
-    forAll(up, pointi)
-    {
-        up[pointi] /= pointVolume_[pointi];
-    }
-    return tup;
-}
-
 
 Foam::tmp<Foam::pointField>
 Foam::fv::immersedElasticForce::transferPoints() const
@@ -237,7 +163,7 @@ Foam::labelList Foam::fv::immersedElasticForce::locate(const pointField& x)
         }
         else
         {
-            nodeCell_[i] = cells[i];
+            transfer_.setCell(i, cells[i]);
         }
     }
     return rank;
@@ -305,62 +231,10 @@ void Foam::fv::immersedElasticForce::placeOutside
             rank[i] = owner[i];
             if (owner[i] == Pstream::myProcNo())
             {
-                nodeCell_[i] = nearestCell[i];
+                transfer_.setCell(i, nearestCell[i]);
                 locator_->setHint(i, nearestCell[i]);
             }
         }
-    }
-}
-
-
-void Foam::fv::immersedElasticForce::setWeights
-(
-    const label i,
-    const point& x
-)
-{
-    const label celli = nodeCell_[i];
-    label tetFacei = -1;
-    label tetPti = -1;
-    mesh_.findTetFacePt(celli, x, tetFacei, tetPti);
-    if (tetFacei < 0)
-    {
-        // outside the cell's tets (outside the fluid, or by round-off on
-        // the cell's boundary): the nearest tet, the weights clamped
-        scalar best = GREAT;
-        for (const label facei : mesh_.cells()[celli])
-        {
-            const face& f = mesh_.faces()[facei];
-            for (label tetPt = 1; tetPt < f.size() - 1; ++tetPt)
-            {
-                const tetIndices t(celli, facei, tetPt);
-                const scalar d =
-                    mag(t.tet(mesh_).nearestPoint(x).rawPoint() - x);
-                if (d < best)
-                {
-                    best = d;
-                    tetFacei = facei;
-                    tetPti = tetPt;
-                }
-            }
-        }
-    }
-    const tetIndices tetIs(celli, tetFacei, tetPti);
-    barycentric b = tetIs.tet(mesh_).pointToBarycentric(x);
-    scalar sum = 0;
-    for (direction k = 0; k < 4; ++k)
-    {
-        b[k] = max(b[k], scalar(0));
-        sum += b[k];
-    }
-    const triFace tri(tetIs.faceTriIs(mesh_));
-    for (direction k = 0; k < 4; ++k)
-    {
-        nodeWeights_[i][k] = b[k]/max(sum, VSMALL);
-    }
-    for (direction k = 0; k < 3; ++k)
-    {
-        nodePoints_[i][k] = tri[k];
     }
 }
 
@@ -375,11 +249,11 @@ void Foam::fv::immersedElasticForce::updateStencils()
     {
         if (rank[i] != Pstream::myProcNo())
         {
-            nodeCell_[i] = -1;
+            transfer_.setCell(i, -1);
         }
         else if (!keepsStencil(i))
         {
-            setWeights(i, x[i]);
+            transfer_.setWeights(i, x[i]);
         }
     }
     if (!stencilsBuilt_)
@@ -396,7 +270,7 @@ void Foam::fv::immersedElasticForce::spread
     vectorField& s
 ) const
 {
-    spreadPoints(fromNodes(F), s);
+    transfer_.spread(fromNodes(F), rhoFluid_, s);
 }
 
 
@@ -405,107 +279,7 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::gather
     const vectorField& u
 ) const
 {
-    return toNodes(gatherPoints(u));
-}
-
-
-void Foam::fv::immersedElasticForce::spreadPoints
-(
-    const vectorField& F,
-    vectorField& s
-) const
-{
-    // the transpose of gather(): the cell centre's share to the cell (or
-    // to its points equally, setPointData()), every point's share over the
-    // volume of the point's cells; s per unit fluid mass
-    const scalarField& V = mesh_.V();
-    s.setSize(mesh_.nCells());
-    s = Zero;
-    vectorField pointF(mesh_.nPoints(), Zero);
-    forAll(F, i)
-    {
-        const label celli = nodeCell_[i];
-        if (celli < 0)
-        {
-            continue;
-        }
-        if (ownCentre_[celli])
-        {
-            s[celli] += nodeWeights_[i][0]*F[i]/(rhoFluid_*V[celli]);
-        }
-        else
-        {
-            const labelList& cPoints = mesh_.cellPoints()[celli];
-            const vector Fc = nodeWeights_[i][0]*F[i]/cPoints.size();
-            for (const label pointi : cPoints)
-            {
-                pointF[pointi] += Fc;
-            }
-        }
-        for (direction k = 0; k < 3; ++k)
-        {
-            pointF[nodePoints_[i][k]] += nodeWeights_[i][k + 1]*F[i];
-        }
-    }
-    syncTools::syncPointList(mesh_, pointF, plusEqOp<vector>(), vector::zero);
-
-    const labelListList& pointCells = mesh_.pointCells();
-    forAll(pointF, pointi)
-    {
-        if (pointF[pointi] == vector::zero)
-        {
-            continue;
-        }
-        const vector d = pointF[pointi]/(rhoFluid_*pointVolume_[pointi]);
-        for (const label celli : pointCells[pointi])
-        {
-            s[celli] += d;
-        }
-    }
-}
-
-
-Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::gatherPoints
-(
-    const vectorField& u
-) const
-{
-    tmp<vectorField> tv(new vectorField(nodeCell_.size(), Zero));
-    vectorField& v = tv.ref();
-    const vectorField up(pointVelocity(u));
-    forAll(v, i)
-    {
-        const label celli = nodeCell_[i];
-        if (celli < 0)
-        {
-            continue;
-        }
-        // the cell centre's value: the cell's own, or in a cell much
-        // smaller than those around it (a sliver) the mean of its points'
-        // (setPointData())
-        vector uc(Zero);
-        if (ownCentre_[celli])
-        {
-            uc = u[celli];
-        }
-        else
-        {
-            const labelList& cPoints = mesh_.cellPoints()[celli];
-            for (const label pointi : cPoints)
-            {
-                uc += up[pointi];
-            }
-            uc /= cPoints.size();
-        }
-        v[i] = nodeWeights_[i][0]*uc;
-        for (direction k = 0; k < 3; ++k)
-        {
-            v[i] += nodeWeights_[i][k + 1]*up[nodePoints_[i][k]];
-        }
-    }
-    Pstream::listCombineGather(v, plusEqOp<vector>());
-    Pstream::listCombineScatter(v);
-    return tv;
+    return toNodes(transfer_.gather(u));
 }
 
 
@@ -582,13 +356,13 @@ void Foam::fv::immersedElasticForce::spreadForce
 
     vectorField& s = force_.field();
     const vectorField Fq(fromNodes(F));
-    spreadPoints(Fq, s);
+    transfer_.spread(Fq, rhoFluid_, s);
 
     const scalarField& V = mesh_.V();
     vector total(Zero);
     forAll(Fq, i)
     {
-        if (nodeCell_[i] >= 0)
+        if (transfer_.cell(i) >= 0)
         {
             total += Fq[i];
         }
@@ -624,14 +398,9 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     nodeElements_(),
     nodeElementVolume_(),
     elementVolume_(),
-    nodeCell_(),
-    nodePoints_(),
-    nodeWeights_(),
-    pointVolume_(),
+    transfer_(mesh),
     locator_(),
-    ownCentre_(),
     smallCell_(0.2),
-    smallCells_(0),
     force_
     (
         IOobject
@@ -672,9 +441,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     const label n = solidPtr_->nPoints();
     free_ = solidPtr_->freeComponents();
     const label nq = n + (elementPoints_ ? solidPtr_->nElements() : 0);
-    nodeCell_.setSize(nq, -1);
-    nodePoints_.setSize(nq);
-    nodeWeights_.setSize(nq);
+    transfer_.setSize(nq);
     if (elementPoints_)
     {
         setElementPoints();
@@ -688,7 +455,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
             tethered_[i] = (cmptSum(free_[i]) == 0);
         }
     }
-    setPointData();
+    transfer_.setPointData(smallCell_);
     // the sharp method's walk limit (immersedPairs' maxWalk default)
     locator_.reset(new immersedPointLocator(mesh, 100));
     updateStencils();
@@ -816,7 +583,7 @@ void Foam::fv::immersedElasticForce::report() const
         << " elements; transfer points: "
         << (elementPoints_ ? "nodes and element centroids" : "nodes")
         << "; " << outside_ << " free nodes outside the fluid mesh"
-        << " (taken in their nearest cell); " << smallCells_ << " cells"
+        << " (taken in their nearest cell); " << transfer_.nSmallCells() << " cells"
         << " smaller than " << smallCell_ << " of the cells around them"
         << " take their centre's value from their points; force on the fluid "
         << fluidForce_ << " N, on the walls " << wallForce_ << " N" << nl
@@ -991,7 +758,7 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             pointSet::nodes,
             "fvOption " + name_
         ) == pointSet::elements;
-    if (nodeCell_.size() && elements != elementPoints_)
+    if (transfer_.size() && elements != elementPoints_)
     {
         FatalIOErrorInFunction(coeffs_)
             << "fvOption " << name_ << ": transferPoints cannot change"

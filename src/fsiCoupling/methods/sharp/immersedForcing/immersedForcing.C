@@ -31,13 +31,7 @@ Foam::fv::immersedForcing::wallTypeNames
 ({
     { wallType::ghost, "ghost" },
     { wallType::staircase, "staircase" },
-});
-
-const Foam::Enum<Foam::fv::immersedForcing::cutCellsType>
-Foam::fv::immersedForcing::cutCellsTypeNames
-({
-    { cutCellsType::no, "no" },
-    { cutCellsType::interpolation, "interpolation" },
+    { wallType::interpolation, "interpolation" },
 });
 
 
@@ -239,9 +233,9 @@ void Foam::fv::immersedForcing::searchPairs()
     Info<< type() << ' ' << name_ << ": solid at t = " << solid.time()
         << ", covered cells " << returnReduce(pairs.coveredCells().size(),
                sumOp<label>())
-        << (cut_ ? ", of them cut cells " : "")
+        << (interpolatedWall() ? ", of them cut cells " : "")
         << (
-               cut_
+               interpolatedWall()
              ? Foam::name(returnReduce(cutCellList_.size(), sumOp<label>()))
              : word::null
            )
@@ -402,7 +396,7 @@ void Foam::fv::immersedForcing::updateBoundary(const surfaceSearch& search)
 {
     const immersedPairs& pairs = coupling_.pairs();
     const labelList& covered = pairs.coveredCells();
-    if (!cut_)
+    if (!interpolatedWall())
     {
         boundary_.update(covered, coveredVelocity_);
         coveredPairIndex_ = identity(covered.size());
@@ -615,7 +609,7 @@ void Foam::fv::immersedForcing::updateSolidFraction
 
 void Foam::fv::immersedForcing::locateWall(const surfaceSearch& search)
 {
-    if (!ghostWall_)
+    if (!ghostWall())
     {
         return;
     }
@@ -663,10 +657,10 @@ bool Foam::fv::immersedForcing::needsOctree
     // cell's own elements (no octree: the covered cells of the projection
     // must be the pairs')
     return
-        (cut_ && (!cutCellsCurrent(points) || !wallInterpolationCurrent_))
+        (interpolatedWall() && (!cutCellsCurrent(points) || !wallInterpolationCurrent_))
      || solidFraction
      || (
-            ghostWall_
+            ghostWall()
          && coupling_.pairs().coverage()
          != immersedPairs::coverageType::touching
         );
@@ -728,7 +722,7 @@ void Foam::fv::immersedForcing::fluidForce
         boundary_.traction(p, U, tnu(), rhoFluid_, coveredGradP_)
     );
     // To the solid nodes (held for the solid's next step)
-    if (cut_)
+    if (interpolatedWall())
     {
         // to the pairs' covered cells, with the cut cells' force: the
         // reaction of the penalty (constrain) that holds a cut cell whose
@@ -782,8 +776,8 @@ void Foam::fv::immersedForcing::fluidForce
         t.transfer(tp);
     }
     vectorField& f = solid.externalForce();
-    f = spread(t);
-    if (cut_)
+    f = coupling_.spreadToSolid(t);
+    if (interpolatedWall())
     {
         // the forcing cells' penalty reaction, to the nodes of their
         // nearest surface points (the fluid feels it back: cutForce_)
@@ -795,29 +789,6 @@ void Foam::fv::immersedForcing::fluidForce
     force_ = sum(f);
 }
 
-Foam::tmp<Foam::vectorField> Foam::fv::immersedForcing::spread
-(
-    const vectorField& cellForce
-) const
-{
-    const immersedSolid& solid = coupling_.solid();
-    const List<solidTet>& elements = solid.elements();
-    const immersedPairs& pairs = coupling_.pairs();
-    auto tf = tmp<vectorField>::New(solid.nPoints(), Zero);
-    vectorField& f = tf.ref();
-    const labelUList& element = pairs.coveringElement();
-    const UList<immersedPairs::tetWeights>& w = pairs.weights();
-    forAll(cellForce, i)
-    {
-        const solidTet& e = elements[element[i]];
-        for (label k = 0; k < 4; ++k)
-        {
-            f[e[k]] += w[i][k]*cellForce[i];
-        }
-    }
-    reduce(f, sumOp<vectorField>());
-    return tf;
-}
 
 
 void Foam::fv::immersedForcing::writeDiagnostics()
@@ -986,10 +957,9 @@ Foam::fv::immersedForcing::immersedForcing
     rhoFluid_(0),
     boundary_(mesh),
     force_(Zero),
-    ghostWall_(true),
+    wall_(wallType::ghost),
     cutCells_(mesh),
     fractionCells_(mesh),
-    cut_(false),
     wallInterpolation_(mesh),
     wallInterpolationCurrent_(false),
     cutForce_(Zero),
@@ -1080,7 +1050,7 @@ void Foam::fv::immersedForcing::constrain
     const labelUList& cells = boundary_.coveredCells();
     const vectorField values
     (
-        ghostWall_
+        ghostWall()
       ? boundary_.ghostVelocity(eqn.psi())
       : tmp<vectorField>
         (
@@ -1112,7 +1082,7 @@ void Foam::fv::immersedForcing::constrain
     // becomes (A + K) u = H + K u_s, u = H/(A + K) + K u_s/(A + K), and
     // the projection moves the cell by grad p/(A + K) (Steps II and III);
     // one whose centre is outside is a forcing cell of wallInterpolation_
-    if (cut_)
+    if (interpolatedWall())
     {
         // A: the row's whole diagonal, as the solver and A() see it, with
         // the boundary faces' internal coefficients (fvMatrix::D): on a
@@ -1147,7 +1117,7 @@ Foam::vector Foam::fv::immersedForcing::fluidSource
     {
         total = rhoFluid_*(unconstrained_.residualSum(U) + coveredGradP_);
     }
-    if (cut_)
+    if (interpolatedWall())
     {
         // the cut cells' wall force, whose reaction the fluid receives
         // through the closed part of their faces and the wall shear
@@ -1339,13 +1309,16 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 {"addedMassLength", "a solid about as dense as the fluid"
                     " takes couplingIterations (remove the entry)"},
                 {"coupling", "the coupling is chosen by couplingScheme"
-                    " (explicit or IQNILS; remove the entry)"}
+                    " (explicit or IQNILS; remove the entry)"},
+                {"cutCells", "the wall model is chosen by wall: cutCells"
+                    " interpolation is wall interpolation, cutCells no the"
+                    " default wall ghost"}
             },
             "fvOption " + name_
         );
         coeffs_.readEntry("rhoFluid", rhoFluid_);
         boundary_.setPressureName(coeffs_.getOrDefault<word>("p", "p"));
-        ghostWall_ =
+        wall_ =
             readEnumEntry
             (
                 wallTypeNames,
@@ -1353,30 +1326,7 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
                 coeffs_,
                 wallType::ghost,
                 "fvOption " + name_
-            ) == wallType::ghost;
-        cut_ =
-            readEnumEntry
-            (
-                cutCellsTypeNames,
-                "cutCells",
-                coeffs_,
-                cutCellsType::no,
-                "fvOption " + name_
-            ) == cutCellsType::interpolation;
-        if (cut_)
-        {
-            // the covered cells beside the cut cells hold u_s (the cut
-            // cells are the wall's layer: a ghost value extrapolated
-            // through them would count the wall twice)
-            if (coeffs_.found("wall") && ghostWall_)
-            {
-                FatalIOErrorInFunction(coeffs_)
-                    << "wall ghost and cutCells interpolation: the cut"
-                    << " cells are the wall's layer; remove the entry wall"
-                    << " or set it to staircase" << exit(FatalIOError);
-            }
-            ghostWall_ = false;
-        }
+            );
         // the coupling scheme: made again when its type changes (a
         // run-time modified dictionary), else its entries read again
         if
@@ -1396,7 +1346,10 @@ bool Foam::fv::immersedForcing::read(const dictionary& dict)
         {
             scheme_->read(coeffs_);
         }
-        boundary_.setCoverRamp(!cut_ && coeffs_.getOrDefault<bool>("coverRamp", true));
+        boundary_.setCoverRamp
+        (
+            !interpolatedWall() && coeffs_.getOrDefault<bool>("coverRamp", true)
+        );
         if (rhoFluid_ <= 0)
         {
             FatalIOErrorInFunction(coeffs_)
