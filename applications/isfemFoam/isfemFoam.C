@@ -24,7 +24,8 @@ Description
          the momentum equation (fvOptions) and answer the projection: the
          flux through the faces they hold, the cells they take out of the
          pressure equation, grad p with the wall pressure, the balanced
-         force of the carried leaflets;
+         force of the carried leaflets; Steps II-III repeat until every
+         windkessel outlet's pressure agrees with the step's flow;
       5. (3.4) the end of the fluid step: the force of the final U and p
          on the sharp solid; the carried solid moves with the fluid and its
          stress becomes the next step's force. With coupling iterations

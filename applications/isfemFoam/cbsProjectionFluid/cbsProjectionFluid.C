@@ -10,6 +10,7 @@
 #include "processorFvPatch.H"
 #include "constrainPressure.H"
 #include "adjustPhi.H"
+#include "windkesselFvPatchScalarField.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -66,7 +67,12 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
     immersed_(fv::immersedMethod::all(fvOptions_)),
     pRefCell_(0),
     pRefValue_(0),
-    cumulativeContErr_(0)
+    cumulativeContErr_(0),
+    balancedFlux_(),
+    nOutletCorrectors_
+    (
+        control_.dict().getOrDefault<label>("nOutletCorrectors", 20)
+    )
 {
     Info<< "Fluid: CBS-equivalent projection (Steps I-III), "
         << "viscosity model "
@@ -534,6 +540,30 @@ void Foam::cbsProjectionFluid::adjustDeltaT()
 }
 
 
+void Foam::cbsProjectionFluid::correctOutlets(fvVectorMatrix& UEqn)
+{
+    // A windkessel outlet's pressure is affine in the step's own flow;
+    // each pressure solve takes one secant step on it
+    // (windkesselFvPatchScalarField): a flow the outlet pressure changes
+    // (a pressure inlet) needs more solves than nCorrectors
+    if (!windkesselFvPatchScalarField::found(p_))
+    {
+        return;
+    }
+    for
+    (
+        label i = 0;
+        i < nOutletCorrectors_
+     && !windkesselFvPatchScalarField::allConverged(p_);
+        ++i
+    )
+    {
+        projection(UEqn);
+    }
+    windkesselFvPatchScalarField::report(p_);
+}
+
+
 void Foam::cbsProjectionFluid::solve()
 {
     // Step I
@@ -544,6 +574,7 @@ void Foam::cbsProjectionFluid::solve()
     {
         projection(tUEqn.ref());
     }
+    correctOutlets(tUEqn.ref());
 
     laminarTransport_.correct();
 
