@@ -69,9 +69,10 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
     pRefValue_(0),
     cumulativeContErr_(0),
     balancedFlux_(),
-    nOutletCorrectors_
+    windkesselOutlets_(windkesselFvPatchScalarField::found(p_)),
+    nOutletIterations_
     (
-        control_.dict().getOrDefault<label>("nOutletCorrectors", 20)
+        control_.dict().getOrDefault<label>("nOutletIterations", 10)
     )
 {
     Info<< "Fluid: CBS-equivalent projection (Steps I-III), "
@@ -193,6 +194,47 @@ Foam::tmp<Foam::surfaceScalarField> Foam::cbsProjectionFluid::balance
 }
 
 
+void Foam::cbsProjectionFluid::solvePressure
+(
+    const surfaceScalarField& phiHbyA,
+    const volScalarField& rAU,
+    const surfaceScalarField& rAUf,
+    const volVectorField& HbyA,
+    const surfaceScalarField* phiF
+)
+{
+    while (control_.correctNonOrthogonal())
+    {
+        fvScalarMatrix pEqn
+        (
+            immersed_.size()
+          ? fvm::laplacian(rAUf, p_) == fvc::div(phiHbyA)
+          : fvm::laplacian(rAU, p_) == fvc::div(phiHbyA)
+        );
+
+        pEqn.setReference(pRefCell_, pRefValue_);
+        for (const fv::immersedMethod& m : immersed_)
+        {
+            m.constrainPressure(pEqn, p_);
+        }
+        pEqn.solve(mesh_.solver(p_.select(control_.finalInnerIter())));
+
+        if (control_.finalNonOrthogonalIter())
+        {
+            // Step III, face part: divergence-free flux
+            phi_ = phiHbyA - pEqn.flux();
+            if (phiF)
+            {
+                // the cells: the reconstructed face balance
+                U_ = HbyA
+                  + rAU
+                   *balancedFlux_->reconstruct((*phiF - pEqn.flux())/rAUf);
+            }
+        }
+    }
+}
+
+
 void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
 {
     const volScalarField rAU(1.0/UEqn.A());
@@ -235,34 +277,21 @@ void Foam::cbsProjectionFluid::projection(fvVectorMatrix& UEqn)
     // Pressure boundary conditions consistent with the flux
     constrainPressure(p_, U_, phiHbyA, rAU);
 
-    // Step II (paper Eq. 38): pressure Poisson equation
-    while (control_.correctNonOrthogonal())
+    // Step II (paper Eq. 38): pressure Poisson equation, solved again
+    // while a windkessel outlet's pressure and the flow it gives disagree
+    // (windkesselFvPatchScalarField: Newton steps on the outlet pressure,
+    // one per solve)
+    for (label outletIter = 1; ; ++outletIter)
     {
-        fvScalarMatrix pEqn
+        solvePressure(phiHbyA, rAU, rAUf, HbyA, fb ? &tphiF() : nullptr);
+        if
         (
-            immersed_.size()
-          ? fvm::laplacian(rAUf, p_) == fvc::div(phiHbyA)
-          : fvm::laplacian(rAU, p_) == fvc::div(phiHbyA)
-        );
-
-        pEqn.setReference(pRefCell_, pRefValue_);
-        for (const fv::immersedMethod& m : immersed_)
+            !windkesselOutlets_
+         || outletIter >= nOutletIterations_
+         || windkesselFvPatchScalarField::allConverged(p_)
+        )
         {
-            m.constrainPressure(pEqn, p_);
-        }
-        pEqn.solve(mesh_.solver(p_.select(control_.finalInnerIter())));
-
-        if (control_.finalNonOrthogonalIter())
-        {
-            // Step III, face part: divergence-free flux
-            phi_ = phiHbyA - pEqn.flux();
-            if (fb)
-            {
-                // the cells: the reconstructed face balance
-                U_ = HbyA
-                  + rAU
-                   *balancedFlux_->reconstruct((tphiF() - pEqn.flux())/rAUf);
-            }
+            break;
         }
     }
 
@@ -540,30 +569,6 @@ void Foam::cbsProjectionFluid::adjustDeltaT()
 }
 
 
-void Foam::cbsProjectionFluid::correctOutlets(fvVectorMatrix& UEqn)
-{
-    // A windkessel outlet's pressure is affine in the step's own flow;
-    // each pressure solve takes one secant step on it
-    // (windkesselFvPatchScalarField): a flow the outlet pressure changes
-    // (a pressure inlet) needs more solves than nCorrectors
-    if (!windkesselFvPatchScalarField::found(p_))
-    {
-        return;
-    }
-    for
-    (
-        label i = 0;
-        i < nOutletCorrectors_
-     && !windkesselFvPatchScalarField::allConverged(p_);
-        ++i
-    )
-    {
-        projection(UEqn);
-    }
-    windkesselFvPatchScalarField::report(p_);
-}
-
-
 void Foam::cbsProjectionFluid::solve()
 {
     // Step I
@@ -574,7 +579,10 @@ void Foam::cbsProjectionFluid::solve()
     {
         projection(tUEqn.ref());
     }
-    correctOutlets(tUEqn.ref());
+    if (windkesselOutlets_)
+    {
+        windkesselFvPatchScalarField::report(p_);
+    }
 
     laminarTransport_.correct();
 

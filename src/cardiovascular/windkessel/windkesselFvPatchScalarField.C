@@ -111,26 +111,48 @@ void Foam::windkesselFvPatchScalarField::startStep
     s_.pd1 = par_.pDistal->value(runTime.value());
     s_.iter = 0;
     s_.r1 = GREAT;
+    s_.c1 = -1;
+    s_.c2 = -2;
 }
 
 
-Foam::scalar Foam::windkesselFvPatchScalarField::iterate(const scalar Q)
+Foam::label Foam::windkesselFvPatchScalarField::corrector() const
 {
-    scalar p = pOut(s_.Q0);
+    const auto* phiHbyA =
+        db().findObject<surfaceScalarField>("phiHbyA");
+    return phiHbyA ? label(phiHbyA->eventNo()) : -1;
+}
+
+
+Foam::scalar Foam::windkesselFvPatchScalarField::iterate
+(
+    const scalar Q,
+    const label corrector
+)
+{
+    scalar p = pOut(s_.Q0);     // the step's first: the flow of the step before
     if (par_.coupling == couplingType::implicit && s_.iter > 0)
     {
-        // the residual of the last solve: it was given s_.p1 and gave Q
+        // the residual of the last solve: it was given p1 and gave Q
         const scalar r = s_.p1 - pOut(Q);
-        p = s_.p1 - r;                            // the fixed point
-        if (s_.iter > 1 && mag(r - s_.r2) > SMALL*mag(r))
+        // two solves of one corrector: Q is affine in p there, the
+        // secant its slope (physically 1 + R dQ/dp >= 1)
+        if (s_.c1 == s_.c2 && mag(s_.p1 - s_.p2) > SMALL*mag(s_.p1))
         {
-            p = s_.p1 - r*(s_.p1 - s_.p2)/(r - s_.r2);  // the secant
+            const scalar slope = (r - s_.r2)/(s_.p1 - s_.p2);
+            if (slope > 0.5)
+            {
+                s_.slope = slope;
+            }
         }
+        p = s_.p1 - r/s_.slope;
         s_.p2 = s_.p1;
         s_.r2 = r;
+        s_.c2 = s_.c1;
         s_.r1 = r;
     }
     s_.p1 = p;
+    s_.c1 = corrector;
     ++s_.iter;
     return p;
 }
@@ -223,6 +245,7 @@ Foam::windkesselFvPatchScalarField::windkesselFvPatchScalarField
         par_.pDistal->value(db().time().value())
     );
     s_.Q0Known = dict.readIfPresent("Q", s_.Q0);
+    dict.readIfPresent("slope", s_.slope);
     check(dict);
 }
 
@@ -319,7 +342,7 @@ void Foam::windkesselFvPatchScalarField::updateCoeffs()
             db().lookupObject<surfaceScalarField>(par_.phiName).eventNo();
         if (s_.iter == 0 || event != s_.phiEvent)
         {
-            p = iterate(Q);
+            p = iterate(Q, corrector());
             s_.phiEvent = event;
         }
         else
@@ -383,7 +406,7 @@ void Foam::windkesselFvPatchScalarField::report(const volScalarField& p)
                 << " pressure and the step's flow did not agree within "
                 << w->par_.tolerance << " (residual " << w->residual() << ")"
                 << " at time " << w->db().time().timeName()
-                << "; raise nOutletCorrectors (CBS) or reduce the step"
+                << "; raise nOutletIterations (CBS) or reduce the step"
                 << endl;
         }
     }
@@ -410,6 +433,7 @@ void Foam::windkesselFvPatchScalarField::write(Ostream& os) const
     {
         os.writeEntry("Q", s_.timeIndex < 0 ? s_.Q0 : flow());
     }
+    os.writeEntry("slope", s_.slope);
     writeEntry("value", os);
 }
 
