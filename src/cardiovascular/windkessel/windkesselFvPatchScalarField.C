@@ -110,7 +110,6 @@ void Foam::windkesselFvPatchScalarField::startStep
     s_.pd0 = par_.pDistal->value(runTime.value() - s_.dt);
     s_.pd1 = par_.pDistal->value(runTime.value());
     s_.iter = 0;
-    s_.r1 = GREAT;
     s_.c1 = -1;
     s_.c2 = -2;
 }
@@ -149,7 +148,6 @@ Foam::scalar Foam::windkesselFvPatchScalarField::iterate
         s_.p2 = s_.p1;
         s_.r2 = r;
         s_.c2 = s_.c1;
-        s_.r1 = r;
     }
     s_.p1 = p;
     s_.c1 = corrector;
