@@ -63,6 +63,7 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
         fvc::flux(U_)
     ),
     laminarTransport_(U_, phi_),
+    turbulence_(),
     fvOptions_(fv::options::New(mesh)),
     immersed_(fv::immersedMethod::all(fvOptions_)),
     pRefCell_(0),
@@ -83,6 +84,33 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
                "Newtonian"
            )
         << nl;
+
+    // constant/turbulenceProperties, as pimpleFoam reads it; the laminar
+    // Stokes model is the transport model's viscosity alone: without it
+    // the step is the same as without the file
+    IOobject turbulenceHeader
+    (
+        turbulenceModel::propertiesName,
+        mesh.time().constant(),
+        mesh,
+        IOobject::MUST_READ,
+        IOobject::NO_WRITE,
+        false
+    );
+    if (turbulenceHeader.typeHeaderOk<IOdictionary>(true))
+    {
+        turbulence_ =
+            incompressible::turbulenceModel::New(U_, phi_, laminarTransport_);
+        if (turbulence_->type() == "Stokes")
+        {
+            turbulence_.clear();
+        }
+        else
+        {
+            turbulence_->validate();
+            Info<< "Turbulence model " << turbulence_->type() << nl;
+        }
+    }
 
     setRefCell(p_, control_.dict(), pRefCell_, pRefValue_);
     mesh_.setFluxRequired(p_.name());
@@ -107,17 +135,32 @@ Foam::cbsProjectionFluid::intermediateMomentum()
     // Step I (paper Eq. 37): transient + convection + viscous stress
     // (laminar deviatoric stress of Eq. 11 for incompressible flow, with the
     // transpose part for non-uniform viscosity) = momentum sources.
-    const volScalarField nu(laminarTransport_.nu());
-
-    tmp<fvVectorMatrix> tUEqn
-    (
-        fvm::ddt(U_)
-      + fvm::div(phi_, U_)
-      - fvm::laplacian(nu, U_)
-      - fvc::div(nu*dev2(T(fvc::grad(U_))))
-     ==
-        fvOptions_(U_)
-    );
+    // A turbulence model: its effective stress, as pimpleFoam's
+    tmp<fvVectorMatrix> tUEqn;
+    if (turbulence_.valid())
+    {
+        tUEqn =
+        (
+            fvm::ddt(U_)
+          + fvm::div(phi_, U_)
+          + turbulence_->divDevReff(U_)
+         ==
+            fvOptions_(U_)
+        );
+    }
+    else
+    {
+        const volScalarField nu(laminarTransport_.nu());
+        tUEqn =
+        (
+            fvm::ddt(U_)
+          + fvm::div(phi_, U_)
+          - fvm::laplacian(nu, U_)
+          - fvc::div(nu*dev2(T(fvc::grad(U_))))
+         ==
+            fvOptions_(U_)
+        );
+    }
     fvVectorMatrix& UEqn = tUEqn.ref();
 
     UEqn.relax();
@@ -438,7 +481,10 @@ Foam::scalar Foam::cbsProjectionFluid::diffusionNumber() const
     // Di = 0.5 dt max_P sum_f nu_f |S_f| deltaCoeff_f / V_P: the viscous
     // counterpart of courantNumber() (boundary faces count with their
     // deltaCoeffs, the centre-to-face distance; empty patches have none)
-    const volScalarField nu(laminarTransport_.nu());
+    const volScalarField nu
+    (
+        turbulence_.valid() ? turbulence_->nuEff() : laminarTransport_.nu()
+    );
     const scalarField sumD
     (
         fvc::surfaceSum
@@ -585,6 +631,10 @@ void Foam::cbsProjectionFluid::solve()
     }
 
     laminarTransport_.correct();
+    if (turbulence_.valid())
+    {
+        turbulence_->correct();
+    }
 
     checkFinite();
 }
