@@ -9,11 +9,12 @@ Description
     fluid-structure interaction of heart valves (Yao et al., Comput Mech
     2012). Fluid: incompressible (laminar, or with OpenFOAM's turbulence
     models), on a fixed mesh, advanced by a CBS-equivalent projection
-    (class cbsProjectionFluid, Steps I-III of Sect. 4.1). Momentum sources come through fvOptions; the immersed
-    solids among them (fv::immersedMethod: the sharp fv::immersedForcing
-    for thick or rigid bodies, the carried fv::immersedElasticForce for
-    leaflets thinner than a cell) take part in the coupled step of Sect.
-    4.4 through Foam::immersedFsi. One time step:
+    (class cbsProjectionFluid, Steps I-III of Sect. 4.1). Momentum
+    sources come through fvOptions; the immersed solids among them
+    (fv::immersedMethod: the sharp fv::immersedForcing for thick or rigid
+    bodies, the carried fv::immersedElasticForce for leaflets thinner than
+    a cell) take part in the coupled step of Sect. 4.4 through
+    Foam::immersedFsi. One time step:
 
       1. the step: the fluid's Courant (and diffusion) limit, then the
          immersed solids' (nodes within maxCo of their cell size);
