@@ -12,9 +12,11 @@ averaged over the last quarter of the run: a time mean for an unsteady
 LES) and the eddy viscosity (largest nut/nu and its mean over the cells,
 where a nut field is written). Passes ("PASS" on the last line) when x_r,
 the inlet pressure and, where the reference has a model, the mean eddy
-viscosity are within tol of the reference's, relative.
+viscosity are within tol of the reference's, relative; the exit status
+is then 0, 1 when one misses (2 when the cases cannot be read).
 Needs numpy only; reads ascii fields.
 """
+import argparse
 import glob
 import os
 import re
@@ -68,7 +70,9 @@ def last_time(case):
              if re.fullmatch(r"[0-9.e+-]+", d) and float(d) > 0
              and os.path.isfile(os.path.join(case, d, "U"))]
     if not times:
-        sys.exit("checkTurbulence.py: no time directory with U in " + case)
+        print("checkTurbulence.py: no time directory with U in " + case,
+              file=sys.stderr)
+        sys.exit(2)
     return max(times, key=float)
 
 
@@ -97,8 +101,9 @@ def inlet_pressure(case):
         rows += [list(map(float, line.split()[:2])) for line in open(f)
                  if line.strip() and not line.startswith("#")]
     if not rows:
-        sys.exit("checkTurbulence.py: no postProcessing/inletPressure in "
-                 + case)
+        print("checkTurbulence.py: no postProcessing/inletPressure in "
+              + case, file=sys.stderr)
+        sys.exit(2)
     a = np.array(sorted(rows))
     last = a[a[:, 0] >= 0.75*a[-1, 0]]
     # time mean over the last quarter (steps of varying length)
@@ -126,14 +131,14 @@ def measure(case):
 
 
 def main():
-    args = sys.argv[1:]
-    tol = 0.02
-    if "--tol" in args:
-        i = args.index("--tol")
-        tol = float(args[i + 1])
-        del args[i:i + 2]
-    if len(args) != 2:
-        sys.exit(__doc__)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    parser.add_argument("case")
+    parser.add_argument("reference")
+    parser.add_argument("--tol", type=float, default=0.02)
+    opts = parser.parse_args()
+    tol = opts.tol
+    args = [opts.case, opts.reference]
     case, ref = measure(args[0]), measure(args[1])
     print("backward-facing step at t = %g s (reference: %s, t = %g s)"
           % (case["t"], args[1], ref["t"]))
@@ -166,7 +171,8 @@ def main():
             print("  %s: eddy viscosity nut/nu largest %.4g, mean %.4g"
                   % (name, c["nut_max"], c["nut_mean"]))
     print("PASS" if ok else "FAIL")
+    return 0 if ok else 1
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
