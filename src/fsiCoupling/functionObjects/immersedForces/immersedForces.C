@@ -7,6 +7,7 @@
 #include "fvOptions.H"
 #include "volFields.H"
 #include "singlePhaseTransportModel.H"
+#include "turbulenceModel.H"
 #include "OSspecific.H"
 #include "addToRunTimeSelectionTable.H"
 
@@ -102,9 +103,17 @@ bool Foam::functionObjects::immersedForces::execute()
 {
     const volVectorField& U = lookupObject<volVectorField>(UName_);
     const volScalarField& p = lookupObject<volScalarField>(pName_);
-    const singlePhaseTransportModel& transport =
-        lookupObject<singlePhaseTransportModel>("transportProperties");
-    const tmp<volScalarField> tnu(transport.nu());
+    // The viscous traction with the turbulence model's effective viscosity
+    // when the solver has one (nu + nut: with wall functions nut holds the
+    // wall's shear stress), else the transport model's nu
+    const turbulenceModel* turbulence =
+        findObject<turbulenceModel>(turbulenceModel::propertiesName);
+    const tmp<volScalarField> tnu
+    (
+        turbulence
+      ? turbulence->nuEff()
+      : lookupObject<singlePhaseTransportModel>("transportProperties").nu()
+    );
     const UPtrList<const fv::immersedMethod> methods(this->methods());
     const auto covered = [&methods](const label celli)
     {
