@@ -6,13 +6,14 @@ p = p_C + Rp Q, C dp_C/dt = Q - (p_C - p_d)/Rd, the periodic state is
     p(t) = p_d + (Rp + Rd) Q0 + Re(Z(w) Q1 exp(i w t)),
     Z(w) = Rp + Rd/(1 + i w Rd C)
 (Westerhof, Lankhaar & Westerhof, Med Biol Eng Comput 47:131, 2009). The
-flow is the one measured through the outlet (function object outletFlow),
-the pressure the outlet's (outletPressure, times rho); both over the last
+flow is the one measured through the outlet (function object
+<patch>Flow), the pressure the outlet's (<patch>Pressure, times rho); both
+over the last
 period of the run (the start-up transient decays as exp(-t/(Rd C))),
 fitted by least squares with a mean and the first harmonic. Checked: the
 mean and the amplitude within 1 %, the phase within 2 degrees.
 
-Usage: checkWindkessel.py [caseDir] [--period T]
+Usage: checkWindkessel.py [caseDir] [--period T] [--patch outlet]
 """
 import cmath
 import glob
@@ -24,12 +25,17 @@ import sys
 import numpy as np
 
 
-def entry(text, name):
-    """A scalar entry of the outlet's dictionary in 0/p"""
-    outlet = re.search(r"\boutlet\s*\{(.*?)\n\s*\}", text, re.S).group(1)
-    m = re.search(r"\b%s\s+(?:constant\s+)?([-+0-9.eE]+)\s*;" % name, outlet)
+def entry(text, name, patch="outlet"):
+    """A scalar entry of the patch's dictionary in 0/p"""
+    block = re.search(r"\b%s\s*\{(.*?)\n\s*\}" % re.escape(patch), text,
+                      re.S)
+    if not block:
+        raise SystemExit("checkWindkessel: no patch %s in 0/p" % patch)
+    m = re.search(r"\b%s\s+(?:constant\s+)?([-+0-9.eE]+)\s*;" % name,
+                  block.group(1))
     if not m:
-        raise SystemExit("checkWindkessel: no entry %s in 0/p's outlet" % name)
+        raise SystemExit("checkWindkessel: no entry %s in 0/p's %s"
+                         % (name, patch))
     return float(m.group(1))
 
 
@@ -65,14 +71,19 @@ def main():
         i = args.index("--period")
         T = float(args[i + 1])
         del args[i:i + 2]
+    patch = "outlet"
+    if "--patch" in args:
+        i = args.index("--patch")
+        patch = args[i + 1]
+        del args[i:i + 2]
     case = args[0] if args else "."
     text = open(os.path.join(case, "0", "p")).read()
-    Rp, C, Rd = entry(text, "Rp"), entry(text, "C"), entry(text, "Rd")
-    pd, rho = entry(text, "pDistal"), entry(text, "rho")
+    Rp, C, Rd = (entry(text, k, patch) for k in ("Rp", "C", "Rd"))
+    pd, rho = entry(text, "pDistal", patch), entry(text, "rho", patch)
     w = 2*math.pi/T
 
-    tq, Q = series(case, "outletFlow")
-    tp, p = series(case, "outletPressure")
+    tq, Q = series(case, patch + "Flow")
+    tp, p = series(case, patch + "Pressure")
     if len(tq) != len(tp) or np.any(np.abs(tq - tp) > 1e-9):
         raise SystemExit("checkWindkessel: flow and pressure sampled apart")
     end = tq[-1]
@@ -86,9 +97,9 @@ def main():
     ref0 = pd + (Rp + Rd)*Q0
     ref1 = Z*Q1
 
-    print("Windkessel outlet (Rp %g, C %g, Rd %g; Rd C = %g s), period %g s,"
-          " t in (%g, %g] s, %d samples" % (Rp, C, Rd, Rd*C, T, end - T, end,
-                                             last.sum()))
+    print("Windkessel %s (Rp %g, C %g, Rd %g; Rd C = %g s), period %g s,"
+          " t in (%g, %g] s, %d samples" % (patch, Rp, C, Rd, Rd*C, T,
+                                             end - T, end, last.sum()))
     print("  flow through the outlet: mean %.6g m3/s, amplitude %.6g m3/s"
           % (Q0, abs(Q1)))
     ok = True
