@@ -26,15 +26,21 @@ void Foam::immersedFsi::adjustDeltaT() const
     }
     const scalar maxCo = controlDict.get<scalar>("maxCo");
     scalar dt = runTime.deltaTValue();
+    const fv::immersedMethod* limit = nullptr;
     for (const fv::immersedMethod& m : methods_)
     {
-        dt = min(dt, m.maxDeltaT(maxCo));
+        const scalar dtm = m.maxDeltaT(maxCo);
+        if (dtm < dt)
+        {
+            dt = dtm;
+            limit = &m;
+        }
     }
-    if (dt < runTime.deltaTValue())
+    if (limit)
     {
         runTime.setDeltaT(dt);
-        Info<< "deltaT = " << dt << " (solid Courant number " << maxCo
-            << ")" << endl;
+        Info<< "deltaT = " << dt << " (fvOption " << limit->name() << ": "
+            << limit->maxDeltaTLimit(maxCo).c_str() << ")" << endl;
     }
 }
 

@@ -58,6 +58,15 @@ Foam::scalar Foam::fv::immersedMethod::maxDeltaT(const scalar) const
 }
 
 
+Foam::string Foam::fv::immersedMethod::maxDeltaTLimit
+(
+    const scalar maxCo
+) const
+{
+    return "the solid's Courant number " + Foam::name(maxCo);
+}
+
+
 void Foam::fv::immersedMethod::advanceSolid()
 {}
 

@@ -8,6 +8,7 @@
 #include "readEnumEntry.H"
 #include "checkRemovedEntries.H"
 #include "clockTime.H"
+#include "zeroGradientFvPatchFields.H"
 #include "OFstream.H"
 #include "IFstream.H"
 #include "addToRunTimeSelectionTable.H"
@@ -318,6 +319,13 @@ void Foam::fv::immersedElasticForce::spreadForce
     const scalar dt = mesh_.time().deltaTValue();
     clockTime clock;
     vectorField& F = nodeForce_;
+    if (stepDamping_ > 0)
+    {
+        // the force of x + beta v, beta a fraction of the step
+        // (carriedStableStep.H: under backward, b >= 1/2 keeps every mode
+        // from growing)
+        solid_->setStiffnessDamping(stepDamping_*dt);
+    }
     string why;
     if (!solid_->interactionForce(dt, F, why))
     {
@@ -428,11 +436,15 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     wallForce_(Zero),
     outside_(0),
     reconstruction_(),
+    stableStep_(mesh, name, dictionary::null),
+    estimateStep_(false),
+    stepDamping_(0),
     updateIndex_(mesh.time().timeIndex()),
     probes_(solidPtr_()),
     solidTime_(0),
     searchTime_(0),
-    forceTime_(0)
+    forceTime_(0),
+    stepTime_(0)
 {
     read(dict);
 
@@ -465,6 +477,14 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     spreadForce(lastVelocity_, false);
 
     report();
+    if
+    (
+        estimateStep_
+     && !stableStep_.readState(solidPtr_->stateDir(), solidPtr_->nPoints())
+    )
+    {
+        estimateStableStep();
+    }
 
     // the solid's output at the start time
     solidPtr_->write(true);
@@ -567,6 +587,59 @@ void Foam::fv::immersedElasticForce::readState(const fileName& stateDir)
 }
 
 
+void Foam::fv::immersedElasticForce::estimateStableStep()
+{
+    clockTime clock;
+    if (!reconstruction_.valid())
+    {
+        reconstruction_.reset(new balancedForceFlux(mesh_));
+    }
+    const balancedForceFlux& transfer = reconstruction_();
+    stableStep_.estimate
+    (
+        free_,
+        [this](const vectorField& w, vectorField& dF, string& why)
+        {
+            return solid_->stiffnessAction(w, dF, why);
+        },
+        [this, &transfer](const vectorField& F)
+        {
+            volVectorField f
+            (
+                IOobject
+                (
+                    name_ + ":stableStepForce",
+                    mesh_.time().timeName(),
+                    mesh_,
+                    IOobject::NO_READ,
+                    IOobject::NO_WRITE,
+                    false
+                ),
+                mesh_,
+                dimensionedVector(dimAcceleration/dimTime, Zero),
+                zeroGradientFvPatchVectorField::typeName
+            );
+            spread(F, f.primitiveFieldRef());
+            f.correctBoundaryConditions();
+            return transfer.flux(f);
+        },
+        [this, &transfer](const surfaceScalarField& phi)
+        {
+            return gather(transfer.reconstruct(phi)().primitiveField());
+        }
+    );
+    stepTime_ += clock.timeIncrement();
+    const label peak = stableStep_.modePeak();
+    stableStep_.report(Info, solid_->stiffnessDamping());
+    if (peak >= 0)
+    {
+        Info<< "; mode largest at node " << peak << " ("
+            << solidPtr_->points()[peak] << ")";
+    }
+    Info<< "; " << stepTime_ << " s so far" << endl;
+}
+
+
 void Foam::fv::immersedElasticForce::report() const
 {
     const label n = solidPtr_->nPoints();
@@ -614,6 +687,27 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
 }
 
 
+Foam::scalar Foam::fv::immersedElasticForce::maxDeltaT(const scalar) const
+{
+    return
+        estimateStep_
+      ? stableStep_.maxDeltaT(solid_->stiffnessDamping())
+      : GREAT;
+}
+
+
+Foam::string Foam::fv::immersedElasticForce::maxDeltaTLimit
+(
+    const scalar
+) const
+{
+    return
+        Foam::name(stableStep_.fraction())
+      + " of the carried solid's stable step (omega "
+      + Foam::name(stableStep_.omega()) + " 1/s)";
+}
+
+
 bool Foam::fv::immersedElasticForce::updateForce()
 {
     const Time& runTime = mesh_.time();
@@ -647,6 +741,11 @@ bool Foam::fv::immersedElasticForce::updateForce()
 
     lastVelocity_ = v;
     spreadForce(v, true);   // adds to solidTime_ and forceTime_
+
+    if (estimateStep_ && stableStep_.due())
+    {
+        estimateStableStep();
+    }
 
     scalar vMax = 0;
     label iMax = -1;
@@ -700,6 +799,10 @@ void Foam::fv::immersedElasticForce::write()
             FatalErrorInFunction
                 << "Cannot write " << os.name() << exit(FatalError);
         }
+    }
+    if (estimateStep_)
+    {
+        stableStep_.writeState(dir);
     }
     solidPtr_->write();
 }
@@ -768,6 +871,17 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
     smallCell_ = coeffs_.getOrDefault<scalar>("smallCell", 0.2);
     tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);
     tetherStiffness_ = coeffs_.getOrDefault<scalar>("tetherStiffness", 0.1);
+    estimateStep_ = coeffs_.found("stableStep");
+    stepDamping_ = coeffs_.getOrDefault<scalar>("stepDamping", 0);
+    if (stepDamping_ < 0 || stepDamping_ > 1)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": stepDamping " << stepDamping_
+            << " must be in [0, 1] (the leaflets' stiffness damping as a"
+            << " fraction of the step; 0.75 under the backward scheme, 0:"
+            << " the solid's stiffnessDamping)" << exit(FatalIOError);
+    }
+    stableStep_.read(coeffs_);
     if
     (
         tetherRelaxation_ < 0 || tetherRelaxation_ > 1

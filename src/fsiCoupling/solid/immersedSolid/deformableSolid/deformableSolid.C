@@ -639,6 +639,87 @@ bool Foam::immersedSolids::deformable::interactionForce
 }
 
 
+Foam::scalar Foam::immersedSolids::deformable::stiffnessDamping() const
+{
+    return solid_->options().stiffnessDamping;
+}
+
+
+void Foam::immersedSolids::deformable::setStiffnessDamping(const scalar beta)
+{
+    try
+    {
+        solid_->setStiffnessDamping(beta);
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        FatalIOErrorInFunction(dict_)
+            << err.what() << exit(FatalIOError);
+    }
+}
+
+
+bool Foam::immersedSolids::deformable::stiffnessAction
+(
+    const vectorField& w,
+    vectorField& dF,
+    string& why
+) const
+{
+    const std::vector<smoothedSolid::Vec3>& u = solid_->displacement();
+    const std::vector<smoothedSolid::Vec3> free = solid_->freeComponents();
+    if (label(u.size()) != w.size())
+    {
+        why = "stiffnessAction: " + Foam::name(w.size())
+            + " nodal motions for a solid of " + Foam::name(label(u.size()))
+            + " nodes";
+        return false;
+    }
+    dF.setSize(w.size());
+    const scalar wMax = max(mag(w));
+    if (!(wMax > 0))
+    {
+        dF = Zero;
+        return true;
+    }
+    // K_T w = (f_int(u + eps w) - f_int(u - eps w))/(2 eps), as
+    // smoothedSolid's criticalTimeStep (dynamics/CriticalStep.cpp; the
+    // solid is the same on every rank: no reduction)
+    const smoothedSolid::TetMesh& mesh = solid_->mesh();
+    scalar hMin = GREAT;
+    for (int e = 0; e < mesh.nElements(); ++e)
+    {
+        hMin = min(hMin, mesh.elementHeight(e));
+    }
+    const scalar eps = 1e-7*hMin/wMax;
+    std::vector<smoothedSolid::Vec3> up(u), um(u);
+    forAll(w, i)
+    {
+        const smoothedSolid::Vec3 d =
+            eps*toVec3(w[i]).cwiseProduct(free[i]);
+        up[i] += d;
+        um[i] -= d;
+    }
+    try
+    {
+        const std::vector<smoothedSolid::Vec3> fp = solid_->internalForce(up);
+        const std::vector<smoothedSolid::Vec3> fm = solid_->internalForce(um);
+        forAll(dF, i)
+        {
+            const smoothedSolid::Vec3 k =
+                ((fm[i] - fp[i])/(2*eps)).cwiseProduct(free[i]);
+            dF[i] = vector(k(0), k(1), k(2));
+        }
+    }
+    catch (const smoothedSolid::Error& err)
+    {
+        why = err.what();
+        return false;
+    }
+    return true;
+}
+
+
 bool Foam::immersedSolids::deformable::tryMoveWith
 (
     const vectorField& v,
