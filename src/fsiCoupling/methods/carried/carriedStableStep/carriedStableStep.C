@@ -29,6 +29,7 @@ Foam::carriedStableStep::carriedStableStep
     interval_(20),
     iterations_(12),
     fraction_(0.8),
+    refuseGrowth_(1.5),
     mode_(),
     omega2_(0),
     change_(0),
@@ -54,13 +55,22 @@ void Foam::carriedStableStep::read(const dictionary& coeffs)
     interval_ = dict.getOrDefault<label>("interval", 20);
     iterations_ = dict.getOrDefault<label>("iterations", 12);
     fraction_ = dict.getOrDefault<scalar>("fraction", 0.8);
-    if (interval_ < 1 || iterations_ < 1 || !(fraction_ > 0))
+    refuseGrowth_ = dict.getOrDefault<scalar>("refuseGrowth", 1.5);
+    if (refuseGrowth_ != 0 && !(refuseGrowth_ > 1))
+    {
+        FatalIOErrorInFunction(coeffs)
+            << "fvOption " << owner_ << ": stableStep refuseGrowth "
+            << refuseGrowth_ << ": give a factor above 1 (the fastest"
+            << " node's speed-up in one step that has the step checked),"
+            << " or 0 to never refuse a step" << exit(FatalIOError);
+    }
+    if (interval_ < 1 || iterations_ < 1 || !(fraction_ > 0) || fraction_ > 1)
     {
         FatalIOErrorInFunction(coeffs)
             << "fvOption " << owner_ << ": stableStep { interval "
             << interval_ << "; iterations " << iterations_ << "; fraction "
             << fraction_ << "; }: give interval and iterations of at least"
-            << " 1 and a positive fraction (of the explicit force's"
+            << " 1 and a fraction in (0, 1] (of the explicit force's"
             << " stable step)" << exit(FatalIOError);
     }
     ITstream& ddt = mesh_.ddtScheme("ddt(U)");
@@ -178,14 +188,15 @@ bool Foam::carriedStableStep::due() const
 
 void Foam::carriedStableStep::estimate
 (
+    const bool fresh,
     const vectorField& free,
     const stiffnessMap& stiffness,
     const forceFluxMap& forceFlux,
     const velocityMap& velocity
 )
 {
-    const label first = mode_.size() != free.size();
-    const label m = first ? 3*iterations_ : iterations_;
+    const bool first = mode_.size() != free.size();
+    const label m = (first || fresh) ? 3*iterations_ : iterations_;
     const label index = mesh_.time().timeIndex();
 
     // the start: the last mode plus as much of a pseudo-random pattern (a

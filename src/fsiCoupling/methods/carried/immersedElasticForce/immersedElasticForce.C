@@ -439,6 +439,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     stableStep_(mesh, name, dictionary::null),
     estimateStep_(false),
     stepDamping_(0),
+    refusals_(0),
     updateIndex_(mesh.time().timeIndex()),
     probes_(solidPtr_()),
     solidTime_(0),
@@ -587,7 +588,7 @@ void Foam::fv::immersedElasticForce::readState(const fileName& stateDir)
 }
 
 
-void Foam::fv::immersedElasticForce::estimateStableStep()
+void Foam::fv::immersedElasticForce::estimateStableStep(const bool fresh)
 {
     clockTime clock;
     if (!reconstruction_.valid())
@@ -597,6 +598,7 @@ void Foam::fv::immersedElasticForce::estimateStableStep()
     const balancedForceFlux& transfer = reconstruction_();
     stableStep_.estimate
     (
+        fresh,
         free_,
         [this](const vectorField& w, vectorField& dF, string& why)
         {
@@ -687,6 +689,54 @@ Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
 }
 
 
+bool Foam::fv::immersedElasticForce::refuseStep(const vectorField& v)
+{
+    Time& runTime = const_cast<Time&>(mesh_.time());
+    const scalar growth = stableStep_.refuseGrowth();
+    if
+    (
+        !estimateStep_
+     || !(growth > 0)
+     || refusals_ > 0   // the step again at the bound just estimated
+     || !runTime.controlDict().getOrDefault("adjustTimeStep", false)
+    )
+    {
+        return false;
+    }
+    // the nodes are the same on every rank (v summed over the ranks)
+    const scalar vNew = max(mag(v));
+    const scalar vOld = max(mag(lastVelocity_));
+    if (!(vOld > 0) || !(vNew > growth*vOld))
+    {
+        return false;
+    }
+    // the fastest node sped up by more than 'growth' in one step: a fresh
+    // estimate at the step's start (the solid has not moved yet)
+    Info<< type() << ' ' << name_ << ": the fastest node " << vNew
+        << " m/s after " << vOld << " m/s; the stable step estimated again"
+        << endl;
+    estimateStableStep(true);
+    const scalar dt = runTime.deltaTValue();
+    const scalar beta = solid_->stiffnessDamping();
+    if (dt <= stableStep_.stableDeltaT(beta))
+    {
+        // within the bound: the flow's own acceleration (the next step
+        // takes the fraction of the new estimate)
+        return false;
+    }
+    const scalar dtMax = stableStep_.maxDeltaT(beta);
+    ++refusals_;
+    const scalar t0 = runTime.value() - dt;
+    runTime.setDeltaT(dtMax, false);
+    runTime.setTime(t0 + dtMax, runTime.timeIndex());
+    Info<< type() << ' ' << name_ << ": step refused (deltaT " << dt
+        << " s above the stable step " << stableStep_.stableDeltaT(beta)
+        << " s): repeated from " << t0 << " s with deltaT " << dtMax
+        << " s (" << stableStep_.fraction() << " of it)" << endl;
+    return true;
+}
+
+
 Foam::scalar Foam::fv::immersedElasticForce::maxDeltaT(const scalar) const
 {
     return
@@ -715,7 +765,6 @@ bool Foam::fv::immersedElasticForce::updateForce()
     {
         return true;
     }
-    updateIndex_ = runTime.timeIndex();
     const scalar dt = runTime.deltaTValue();
 
     // x^{n+1} = x^n + dt v(u^{n+1}) (Zhang et al. 2004, Eq. 12)
@@ -724,6 +773,13 @@ bool Foam::fv::immersedElasticForce::updateForce()
         mesh_.lookupObject<volVectorField>(fieldNames_[0]);
     const vectorField v(nodeVelocity(U));
     forceTime_ += clock.timeIncrement();
+    if (refuseStep(v))
+    {
+        // the fluid's step again, shorter (the solid has not moved)
+        return false;
+    }
+    refusals_ = 0;
+    updateIndex_ = runTime.timeIndex();
     string why;
     if (!solid_->tryMoveWith(v, dt, why))
     {
