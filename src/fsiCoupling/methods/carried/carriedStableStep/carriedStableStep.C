@@ -3,11 +3,6 @@
 \*---------------------------------------------------------------------------*/
 
 #include "carriedStableStep.H"
-#include "fvm.H"
-#include "fvc.H"
-#include "fvMatrices.H"
-#include "fixedValueFvPatchFields.H"
-#include "zeroGradientFvPatchFields.H"
 #include "OFstream.H"
 #include "IFstream.H"
 #include "PtrList.H"
@@ -20,6 +15,7 @@
 Foam::carriedStableStep::carriedStableStep
 (
     const fvMesh& mesh,
+    carriedCouplingMap& map,
     const word& owner,
     const dictionary& coeffs
 )
@@ -36,8 +32,7 @@ Foam::carriedStableStep::carriedStableStep
     index_(-1),
     iterationsDone_(0),
     solves_(0),
-    backward_(false),
-    potential_()
+    map_(map)
 {
     read(coeffs);
 }
@@ -73,9 +68,7 @@ void Foam::carriedStableStep::read(const dictionary& coeffs)
             << " 1 and a fraction in (0, 1] (of the explicit force's"
             << " stable step)" << exit(FatalIOError);
     }
-    ITstream& ddt = mesh_.ddtScheme("ddt(U)");
-    const word scheme(ddt);
-    ddt.rewind();
+    const word& scheme = map_.ddtScheme();
     if (scheme != "Euler" && scheme != "backward")
     {
         FatalIOErrorInFunction(coeffs)
@@ -85,98 +78,6 @@ void Foam::carriedStableStep::read(const dictionary& coeffs)
             << " (system/fvSchemes): use one of them, or remove stableStep"
             << " and set the step by maxDeltaT" << exit(FatalIOError);
     }
-    backward_ = (scheme == "backward");
-}
-
-
-Foam::tmp<Foam::surfaceScalarField> Foam::carriedStableStep::project
-(
-    const surfaceScalarField& phi
-)
-{
-    if (!potential_.valid())
-    {
-        // the pressure's conditions, homogeneous: fixed where it is fixed
-        const volScalarField& p = mesh_.lookupObject<volScalarField>("p");
-        wordList types(p.boundaryField().size());
-        forAll(types, patchi)
-        {
-            const word& patchType = mesh_.boundaryMesh()[patchi].type();
-            if (polyPatch::constraintType(patchType))
-            {
-                types[patchi] = patchType;
-            }
-            else if (p.boundaryField()[patchi].fixesValue())
-            {
-                types[patchi] = fixedValueFvPatchScalarField::typeName;
-            }
-            else
-            {
-                types[patchi] = zeroGradientFvPatchScalarField::typeName;
-            }
-        }
-        potential_.reset
-        (
-            new volScalarField
-            (
-                IOobject
-                (
-                    owner_ + ":stableStepPotential",
-                    mesh_.time().timeName(),
-                    mesh_,
-                    IOobject::NO_READ,
-                    IOobject::NO_WRITE,
-                    false
-                ),
-                mesh_,
-                dimensionedScalar(phi.dimensions()/dimLength, Zero),
-                types
-            )
-        );
-        mesh_.setFluxRequired(potential_->name());
-    }
-    volScalarField& q = potential_.ref();
-    q.primitiveFieldRef() = Zero;
-    q.correctBoundaryConditions();
-
-    fvScalarMatrix qEqn(fvm::laplacian(q) == fvc::div(phi));
-    if (q.needReference())
-    {
-        qEqn.setReference(Pstream::master() ? 0 : -1, 0);
-    }
-    // the pressure's solver, converged further (an eigenvector's accuracy)
-    dictionary solverDict(mesh_.solverDict("p"));
-    solverDict.set("relTol", 1e-4);
-    solverDict.set("tolerance", 1e-30);
-    // quietly: the estimate's solves are counted in its own line
-    const int debug = solverPerformance::debug;
-    solverPerformance::debug = 0;
-    const solverPerformance perf = qEqn.solve(solverDict);
-    solverPerformance::debug = debug;
-    solves_ += perf.nIterations();
-    return phi - qEqn.flux();
-}
-
-
-Foam::tmp<Foam::vectorField> Foam::carriedStableStep::apply
-(
-    const vectorField& w,
-    const stiffnessMap& stiffness,
-    const forceFluxMap& forceFlux,
-    const velocityMap& velocity
-)
-{
-    vectorField dF;
-    string why;
-    if (!stiffness(w, dF, why))
-    {
-        FatalErrorInFunction
-            << "fvOption " << owner_ << ": the leaflets' stiffness for the"
-            << " stable step estimate at time " << mesh_.time().timeName()
-            << ": " << why.c_str() << exit(FatalError);
-    }
-    // dF = -K w: the map D K w is minus the velocity it gives
-    return -velocity(project(forceFlux(dF)()));
 }
 
 
@@ -233,12 +134,16 @@ void Foam::carriedStableStep::estimate
     Q.set(0, new vectorField(w/norm));
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
     label k = 0;
-    solves_ = 0;
+    const label solves0 = map_.solves();
     for (; k < m; ++k)
     {
         vectorField v
         (
-            cmptMultiply(apply(Q[k], stiffness, forceFlux, velocity)(), free)
+            cmptMultiply
+            (
+                map_.apply(Q[k], stiffness, forceFlux, velocity, 1e-4)(),
+                free
+            )
         );
         for (label pass = 0; pass < 2; ++pass)
         {
@@ -258,6 +163,7 @@ void Foam::carriedStableStep::estimate
         Q.set(k + 1, new vectorField(v/H(k + 1, k)));
     }
     iterationsDone_ = k;
+    solves_ = map_.solves() - solves0;
     Eigen::EigenSolver<Eigen::MatrixXd> eig(H.topLeftCorner(k, k));
     label best = -1;
     scalar theta = 0;
@@ -315,11 +221,11 @@ Foam::scalar Foam::carriedStableStep::stableDeltaT(const scalar beta) const
         return GREAT;
     }
     const scalar omega = this->omega();
-    const scalar c = backward_ ? 8 : 4;
+    const scalar c = map_.backward() ? 8 : 4;
     // (sqrt(beta^2 omega^2 + c) - beta omega)/omega, without cancellation
     const scalar bw = beta*omega;
     scalar dt = c/(omega*(Foam::sqrt(sqr(bw) + c) + bw));
-    if (backward_)
+    if (map_.backward())
     {
         dt = min(dt, 2*beta);
     }
@@ -333,7 +239,7 @@ void Foam::carriedStableStep::report(Ostream& os, const scalar beta) const
         << omega()
         << " 1/s; " << iterationsDone_ << " Arnoldi iterations, residual "
         << change_ << ", " << solves_
-        << " Poisson iterations; " << (backward_ ? "backward" : "Euler")
+        << " Poisson iterations; " << map_.ddtScheme()
         << ", stiffness damping " << beta << " s), allowed "
         << maxDeltaT(beta) << " s";
 }

@@ -319,12 +319,20 @@ void Foam::fv::immersedElasticForce::spreadForce
     const scalar dt = mesh_.time().deltaTValue();
     clockTime clock;
     vectorField& F = nodeForce_;
-    if (stepDamping_ > 0)
+    const scalar beta = stepDamping_ > 0 ? stepDamping_*dt : baseDamping_;
+    if (implicitForce_.valid())
+    {
+        // the look-ahead force: of x + (dt + beta) v, the configuration
+        // the nodes reach at the step's end at their present velocity
+        // (correctImplicit() adds the change of that velocity)
+        solid_->setStiffnessDamping(dt + beta);
+    }
+    else if (stepDamping_ > 0)
     {
         // the force of x + beta v, beta a fraction of the step
         // (carriedStableStep.H: under backward, b >= 1/2 keeps every mode
         // from growing)
-        solid_->setStiffnessDamping(stepDamping_*dt);
+        solid_->setStiffnessDamping(beta);
     }
     string why;
     if (!solid_->interactionForce(dt, F, why))
@@ -436,8 +444,11 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     wallForce_(Zero),
     outside_(0),
     reconstruction_(),
-    stableStep_(mesh, name, dictionary::null),
+    couplingMap_(mesh, name),
+    stableStep_(mesh, couplingMap_, name, dictionary::null),
     estimateStep_(false),
+    implicitForce_(),
+    baseDamping_(0),
     stepDamping_(0),
     refusals_(0),
     updateIndex_(mesh.time().timeIndex()),
@@ -445,11 +456,13 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     solidTime_(0),
     searchTime_(0),
     forceTime_(0),
-    stepTime_(0)
+    stepTime_(0),
+    implicitTime_(0)
 {
     read(dict);
 
     checkSolid();
+    baseDamping_ = solid_->stiffnessDamping();
 
     const label n = solidPtr_->nPoints();
     free_ = solidPtr_->freeComponents();
@@ -588,6 +601,128 @@ void Foam::fv::immersedElasticForce::readState(const fileName& stateDir)
 }
 
 
+Foam::tmp<Foam::surfaceScalarField>
+Foam::fv::immersedElasticForce::forceFlux(const vectorField& F) const
+{
+    if (!reconstruction_.valid())
+    {
+        reconstruction_.reset(new balancedForceFlux(mesh_));
+    }
+    volVectorField f
+    (
+        IOobject
+        (
+            name_ + ":nodeForce",
+            mesh_.time().timeName(),
+            mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE,
+            false
+        ),
+        mesh_,
+        dimensionedVector(dimAcceleration/dimTime, Zero),
+        zeroGradientFvPatchVectorField::typeName
+    );
+    spread(F, f.primitiveFieldRef());
+    f.correctBoundaryConditions();
+    return reconstruction_->flux(f);
+}
+
+
+void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
+{
+    if (lastVelocity_.size() != v.size())
+    {
+        return;
+    }
+    clockTime clock;
+    const scalar dt = mesh_.time().deltaTValue();
+    const scalar beta = stepDamping_ > 0 ? stepDamping_*dt : baseDamping_;
+    // the fluid's velocity change per unit acceleration over the step:
+    // rAU with the momentum's diagonal taken as its inertia alone (dt
+    // under Euler, 2 dt/3 under backward: 3 u^{n+1}/(2 dt))
+    const scalar a = implicitForce_->response(dt);
+    const balancedForceFlux& transfer = reconstruction_();
+
+    // The force of the step's end, F(x^n + (dt + beta) v^{n+1}), is the
+    // look-ahead force handed to the fluid, F(x^n + (dt + beta) v^n),
+    // less (dt + beta) K dv, dv = v^{n+1} - v^n: the fluid's response to
+    // it, a (dt + beta) D K dv (D K the map of carriedCouplingMap), taken
+    // with the velocity change the look-ahead force gave, r:
+    //     (I + a (dt + beta) D K) dv = r
+    const vectorField r(cmptMultiply(v - lastVelocity_, free_));
+    vectorField dv;
+    const label iterations = implicitForce_->solve
+    (
+        r,
+        a*(dt + beta),
+        free_,
+        [this](const vectorField& w, vectorField& dF, string& why)
+        {
+            return solid_->stiffnessAction(w, dF, why);
+        },
+        [this](const vectorField& F) { return forceFlux(F); },
+        [this, &transfer](const surfaceScalarField& phi)
+        {
+            return gather(transfer.reconstruct(phi)().primitiveField());
+        },
+        dv
+    );
+    vectorField dF;
+    string why;
+    if (!solid_->stiffnessAction(dv, dF, why))
+    {
+        FatalErrorInFunction
+            << "fvOption " << name_ << ": the implicit force at time "
+            << mesh_.time().timeName() << ": " << why.c_str()
+            << exit(FatalError);
+    }
+    dF *= (dt + beta);
+
+    // the fluid corrected by the force's change, projected (one more
+    // Poisson solve, by the final pressure solver): flux, cells (the
+    // reconstruction) and pressure
+    surfaceScalarField& phi = const_cast<surfaceScalarField&>
+    (
+        mesh_.lookupObject<surfaceScalarField>("phi")
+    );
+    volVectorField& U = const_cast<volVectorField&>
+    (
+        mesh_.lookupObject<volVectorField>(fieldNames_[0])
+    );
+    volScalarField& p = const_cast<volScalarField&>
+    (
+        mesh_.lookupObject<volScalarField>("p")
+    );
+    const tmp<surfaceScalarField> dphi
+    (
+        couplingMap_.project(forceFlux(dF), -1)
+    );
+    // (the map's fields carry nominal dimensions: values only)
+    phi.primitiveFieldRef() += a*dphi().primitiveField();
+    forAll(phi.boundaryField(), patchi)
+    {
+        phi.boundaryFieldRef()[patchi] += a*dphi().boundaryField()[patchi];
+    }
+    U.primitiveFieldRef() +=
+        a*transfer.reconstruct(dphi())().primitiveField();
+    U.correctBoundaryConditions();
+    p.primitiveFieldRef() += couplingMap_.potential().primitiveField();
+    p.correctBoundaryConditions();
+
+    v = nodeVelocity(U);
+    implicitTime_ += clock.timeIncrement();
+    Info<< type() << ' ' << name_ << ": implicit force: " << iterations
+        << " iterations, residual " << implicitForce_->residual() << "; |r| "
+        << max(mag(r)) << ", |dv| " << max(mag(dv)) << ", |v - v^n - dv| "
+        << max(mag(cmptMultiply(v - lastVelocity_ - dv, free_)))
+        << " m/s; force change at the nodes " << sum(dF) << " N; "
+        << implicitTime_ << " s so far (map: stiffness, flux,"
+        << " projection, velocity " << couplingMap_.applyTime() << " s)"
+        << endl;
+}
+
+
 void Foam::fv::immersedElasticForce::estimateStableStep(const bool fresh)
 {
     clockTime clock;
@@ -604,27 +739,7 @@ void Foam::fv::immersedElasticForce::estimateStableStep(const bool fresh)
         {
             return solid_->stiffnessAction(w, dF, why);
         },
-        [this, &transfer](const vectorField& F)
-        {
-            volVectorField f
-            (
-                IOobject
-                (
-                    name_ + ":stableStepForce",
-                    mesh_.time().timeName(),
-                    mesh_,
-                    IOobject::NO_READ,
-                    IOobject::NO_WRITE,
-                    false
-                ),
-                mesh_,
-                dimensionedVector(dimAcceleration/dimTime, Zero),
-                zeroGradientFvPatchVectorField::typeName
-            );
-            spread(F, f.primitiveFieldRef());
-            f.correctBoundaryConditions();
-            return transfer.flux(f);
-        },
+        [this](const vectorField& F) { return forceFlux(F); },
         [this, &transfer](const surfaceScalarField& phi)
         {
             return gather(transfer.reconstruct(phi)().primitiveField());
@@ -771,7 +886,7 @@ bool Foam::fv::immersedElasticForce::updateForce()
     clockTime clock;
     const volVectorField& U =
         mesh_.lookupObject<volVectorField>(fieldNames_[0]);
-    const vectorField v(nodeVelocity(U));
+    vectorField v(nodeVelocity(U));
     forceTime_ += clock.timeIncrement();
     if (refuseStep(v))
     {
@@ -780,6 +895,10 @@ bool Foam::fv::immersedElasticForce::updateForce()
     }
     refusals_ = 0;
     updateIndex_ = runTime.timeIndex();
+    if (implicitForce_.valid())
+    {
+        correctImplicit(v);
+    }
     string why;
     if (!solid_->tryMoveWith(v, dt, why))
     {
@@ -928,6 +1047,34 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
     tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);
     tetherStiffness_ = coeffs_.getOrDefault<scalar>("tetherStiffness", 0.1);
     estimateStep_ = coeffs_.found("stableStep");
+    stableStep_.read(coeffs_);
+    if (!coeffs_.found("implicitForce"))
+    {
+        implicitForce_.clear();
+    }
+    else
+    {
+        if (implicitForce_.valid())
+        {
+            implicitForce_->read(coeffs_);
+        }
+        else
+        {
+            implicitForce_.reset
+            (
+                new carriedImplicitForce(couplingMap_, name_, coeffs_)
+            );
+        }
+        if (estimateStep_)
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "fvOption " << name_ << ": stableStep estimates the"
+                << " explicit force's stable step, which implicitForce does"
+                << " not have: remove one of them (with implicitForce the"
+                << " step is the flow's: adjustTimeStep and maxCo in"
+                << " system/controlDict)" << exit(FatalIOError);
+        }
+    }
     stepDamping_ = coeffs_.getOrDefault<scalar>("stepDamping", 0);
     if (stepDamping_ < 0 || stepDamping_ > 1)
     {
@@ -937,7 +1084,6 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << " fraction of the step; 0.75 under the backward scheme, 0:"
             << " the solid's stiffnessDamping)" << exit(FatalIOError);
     }
-    stableStep_.read(coeffs_);
     if
     (
         tetherRelaxation_ < 0 || tetherRelaxation_ > 1

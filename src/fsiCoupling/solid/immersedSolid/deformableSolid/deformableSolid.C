@@ -684,14 +684,19 @@ bool Foam::immersedSolids::deformable::stiffnessAction
     }
     // K_T w = (f_int(u + eps w) - f_int(u - eps w))/(2 eps), as
     // smoothedSolid's criticalTimeStep (dynamics/CriticalStep.cpp; the
-    // solid is the same on every rank: no reduction)
+    // solid is the same on every rank: no reduction). eps |w| = 1e-5 of
+    // the smallest element height: about the cube root of the machine
+    // epsilon, where the central difference's truncation (eps^2) and
+    // round-off (1e-16/eps) errors balance (Nocedal & Wright, Numerical
+    // Optimization, 2nd ed., Sect. 8.1); at 1e-7 the round-off of a
+    // restart's displacement (1e-15) reached 1e-8 of K_T w
     const smoothedSolid::TetMesh& mesh = solid_->mesh();
     scalar hMin = GREAT;
     for (int e = 0; e < mesh.nElements(); ++e)
     {
         hMin = min(hMin, mesh.elementHeight(e));
     }
-    const scalar eps = 1e-7*hMin/wMax;
+    const scalar eps = 1e-5*hMin/wMax;
     std::vector<smoothedSolid::Vec3> up(u), um(u);
     forAll(w, i)
     {
