@@ -148,4 +148,25 @@ Foam::tmp<Foam::vectorField> Foam::carriedCouplingMap::apply
 }
 
 
+Foam::scalar Foam::carriedCouplingMap::orthogonalise
+(
+    const PtrList<vectorField>& Q,
+    const label k,
+    vectorField& v,
+    Eigen::MatrixXd& H
+)
+{
+    for (label pass = 0; pass < 2; ++pass)
+    {
+        for (label i = 0; i <= k; ++i)
+        {
+            const scalar h = sum(Q[i] & v);
+            H(i, k) += h;
+            v -= h*Q[i];
+        }
+    }
+    return Foam::sqrt(sum(magSqr(v)));
+}
+
+
 // ************************************************************************* //

@@ -110,16 +110,7 @@ Foam::label Foam::carriedImplicitForce::solve
                 free
             )
         );
-        for (label pass = 0; pass < 2; ++pass)
-        {
-            for (label i = 0; i <= k; ++i)
-            {
-                const scalar h = sum(Q[i] & v);
-                H(i, k) += h;
-                v -= h*Q[i];
-            }
-        }
-        H(k + 1, k) = Foam::sqrt(sum(magSqr(v)));
+        H(k + 1, k) = carriedCouplingMap::orthogonalise(Q, k, v, H);
         Eigen::VectorXd g = Eigen::VectorXd::Zero(k + 2);
         g(0) = rNorm;
         const Eigen::MatrixXd Hk = H.topLeftCorner(k + 2, k + 1);

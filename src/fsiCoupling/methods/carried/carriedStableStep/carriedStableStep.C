@@ -145,16 +145,7 @@ void Foam::carriedStableStep::estimate
                 free
             )
         );
-        for (label pass = 0; pass < 2; ++pass)
-        {
-            for (label i = 0; i <= k; ++i)
-            {
-                const scalar h = sum(Q[i] & v);
-                H(i, k) += h;
-                v -= h*Q[i];
-            }
-        }
-        H(k + 1, k) = Foam::sqrt(sum(magSqr(v)));
+        H(k + 1, k) = carriedCouplingMap::orthogonalise(Q, k, v, H);
         if (!(H(k + 1, k) > 1e-12*mag(H(k, k))))
         {
             ++k;

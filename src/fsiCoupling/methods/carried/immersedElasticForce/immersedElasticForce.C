@@ -629,6 +629,37 @@ Foam::fv::immersedElasticForce::forceFlux(const vectorField& F) const
 }
 
 
+Foam::carriedCouplingMap::stiffnessMap
+Foam::fv::immersedElasticForce::stiffnessMap() const
+{
+    return [this](const vectorField& w, vectorField& dF, string& why)
+    {
+        return solid_->stiffnessAction(w, dF, why);
+    };
+}
+
+
+Foam::carriedCouplingMap::forceFluxMap
+Foam::fv::immersedElasticForce::forceFluxMap() const
+{
+    return [this](const vectorField& F) { return forceFlux(F); };
+}
+
+
+Foam::carriedCouplingMap::velocityMap
+Foam::fv::immersedElasticForce::velocityMap() const
+{
+    if (!reconstruction_.valid())
+    {
+        reconstruction_.reset(new balancedForceFlux(mesh_));
+    }
+    return [this](const surfaceScalarField& phi)
+    {
+        return gather(reconstruction_->reconstruct(phi)().primitiveField());
+    };
+}
+
+
 void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
 {
     if (lastVelocity_.size() != v.size())
@@ -642,7 +673,6 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
     // rAU with the momentum's diagonal taken as its inertia alone (dt
     // under Euler, 2 dt/3 under backward: 3 u^{n+1}/(2 dt))
     const scalar a = implicitForce_->response(dt);
-    const balancedForceFlux& transfer = reconstruction_();
 
     // The force of the step's end, F(x^n + (dt + beta) v^{n+1}), is the
     // look-ahead force handed to the fluid, F(x^n + (dt + beta) v^n),
@@ -657,15 +687,9 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
         r,
         a*(dt + beta),
         free_,
-        [this](const vectorField& w, vectorField& dF, string& why)
-        {
-            return solid_->stiffnessAction(w, dF, why);
-        },
-        [this](const vectorField& F) { return forceFlux(F); },
-        [this, &transfer](const surfaceScalarField& phi)
-        {
-            return gather(transfer.reconstruct(phi)().primitiveField());
-        },
+        stiffnessMap(),
+        forceFluxMap(),
+        velocityMap(),
         dv
     );
     vectorField dF;
@@ -705,7 +729,7 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
         phi.boundaryFieldRef()[patchi] += a*dphi().boundaryField()[patchi];
     }
     U.primitiveFieldRef() +=
-        a*transfer.reconstruct(dphi())().primitiveField();
+        a*reconstruction_->reconstruct(dphi())().primitiveField();
     U.correctBoundaryConditions();
     p.primitiveFieldRef() += couplingMap_.potential().primitiveField();
     p.correctBoundaryConditions();
@@ -726,24 +750,13 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
 void Foam::fv::immersedElasticForce::estimateStableStep(const bool fresh)
 {
     clockTime clock;
-    if (!reconstruction_.valid())
-    {
-        reconstruction_.reset(new balancedForceFlux(mesh_));
-    }
-    const balancedForceFlux& transfer = reconstruction_();
     stableStep_.estimate
     (
         fresh,
         free_,
-        [this](const vectorField& w, vectorField& dF, string& why)
-        {
-            return solid_->stiffnessAction(w, dF, why);
-        },
-        [this](const vectorField& F) { return forceFlux(F); },
-        [this, &transfer](const surfaceScalarField& phi)
-        {
-            return gather(transfer.reconstruct(phi)().primitiveField());
-        }
+        stiffnessMap(),
+        forceFluxMap(),
+        velocityMap()
     );
     stepTime_ += clock.timeIncrement();
     const label peak = stableStep_.modePeak();
