@@ -706,18 +706,10 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
     // the fluid corrected by the force's change, projected (one more
     // Poisson solve, by the final pressure solver): flux, cells (the
     // reconstruction) and pressure
-    surfaceScalarField& phi = const_cast<surfaceScalarField&>
-    (
-        mesh_.lookupObject<surfaceScalarField>("phi")
-    );
-    volVectorField& U = const_cast<volVectorField&>
-    (
-        mesh_.lookupObject<volVectorField>(fieldNames_[0])
-    );
-    volScalarField& p = const_cast<volScalarField&>
-    (
-        mesh_.lookupObject<volScalarField>("p")
-    );
+    surfaceScalarField& phi =
+        mesh_.lookupObjectRef<surfaceScalarField>("phi");
+    volVectorField& U = mesh_.lookupObjectRef<volVectorField>(fieldNames_[0]);
+    volScalarField& p = mesh_.lookupObjectRef<volScalarField>("p");
     const tmp<surfaceScalarField> dphi
     (
         couplingMap_.project(forceFlux(dF), -1)
