@@ -19,14 +19,18 @@ an oscillator of omega0 = k sqrt(mu/rho), decay rate gamma = nu k^2/2 and
 period T = 2 pi/sqrt(omega0^2 - gamma^2) (for small strains: the run's
 twist is 1.6e-4 m).
 
-The step's own error. With the force implicit (implicitForce) under the
-Euler scheme, the mode advances as backward Euler does on the oscillator:
-the amplification 1/(1 + i z), z = omega0 dt, whose modulus and argument
-give the decay gamma + ln(1 + z^2)/(2 dt) and the period
-2 pi dt/atan(z) (derived; checked on this case at dt = 0.025 and 0.05 s
-to 1 % in period and 4 % in decay, docs/2026-11-29-annulus-torsion.md).
-The explicit force under Euler adds no damping of its own (measured:
-the decay within 1.2 % of gamma at dt = 0.005 s).
+The step's own error. Under the Euler scheme the fluid's velocity takes
+the force of x^n + theta dt v^{n+1} (implicitForce's theta, 1 by default;
+the explicit force: theta = 0) and the nodes move by dt v^{n+1}: for the
+oscillator, in units of dt,
+    v1 (1 + theta z^2) = v0 - z^2 x0,   x1 = x0 + v1,   z = omega0 dt,
+whose amplification lambda solves lambda^2 - tr lambda + 1/c = 0, c = 1 +
+theta z^2, tr = 1 + (1 - z^2)/c: |lambda| = c^(-1/2) and arg lambda =
+acos(tr sqrt(c)/2), so the decay is gamma + ln(c)/(2 dt) and the period
+2 pi dt/arg lambda (theta = 1: backward Euler's 1/(1 + i z), decay
+ln(1 + z^2)/(2 dt), period 2 pi dt/atan(z); theta = 0: no damping of
+the step's own). Derived; checked on this case at dt = 0.025 and 0.05 s
+(docs/2026-11-29-annulus-torsion.md).
 
 The check: the probe's azimuthal displacement (mid-gap, mid-height) is
 fitted by A exp(-g t) sin(w t + phi) over the whole run; the period
@@ -146,21 +150,25 @@ def check(case):
     a, b, k, w0, gamma = mode(case)
     t, s = probe(case)
     dt = float(np.median(np.diff(t)))
-    implicit = False
+    theta = 0.0            # the explicit force: the force of x^n
     run = os.path.join(case, "system", "fvOptions.run")
     if os.path.isfile(run):
-        implicit = "implicitForce" in open(run).read()
+        text = open(run).read()
+        if "implicitForce" in text:
+            m = re.search(r"theta\s+([-+0-9.eE]+)", text)
+            theta = float(m.group(1)) if m else 1.0
     T_cont = 2 * math.pi / math.sqrt(w0 * w0 - gamma * gamma)
     z = w0 * dt
-    if implicit:
-        T_ref = 2 * math.pi * dt / math.atan(z)
-        g_ref = gamma + math.log(1 + z * z) / (2 * dt)
-    else:
-        T_ref, g_ref = T_cont, gamma
+    c = 1 + theta * z * z
+    tr = 1 + (1 - z * z) / c
+    T_ref = 2 * math.pi * dt / math.acos(tr * math.sqrt(c) / 2)
+    g_ref = gamma + math.log(c) / (2 * dt)
     print("closed form: k = %.6f 1/m, omega0 = %.6f 1/s, gamma = %.6f 1/s,"
-          " period %.6f s; %s force, dt = %g s (z = omega0 dt = %.4f)"
-          % (k, w0, gamma, T_cont, "implicit" if implicit else "explicit",
-             dt, z))
+          " period %.6f s; %s, dt = %g s (z = omega0 dt = %.4f): with the"
+          " step's own error period %.6f s, decay %.6f 1/s"
+          % (k, w0, gamma, T_cont,
+             "implicit force, theta %g" % theta if theta > 0
+             else "explicit force", dt, z, T_ref, g_ref))
     # first guesses: zero crossings and the largest value
     zc = [t[i] - s[i] * (t[i + 1] - t[i]) / (s[i + 1] - s[i])
           for i in range(len(s) - 1) if s[i] * s[i + 1] < 0]

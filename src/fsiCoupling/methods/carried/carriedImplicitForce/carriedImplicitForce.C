@@ -21,6 +21,7 @@ Foam::carriedImplicitForce::carriedImplicitForce
     iterations_(30),
     tolerance_(1e-2),
     projectionTolerance_(1e-2),
+    theta_(1),
     lastIterations_(0),
     lastResidual_(0)
 {
@@ -36,6 +37,7 @@ void Foam::carriedImplicitForce::read(const dictionary& coeffs)
     iterations_ = d.getOrDefault<label>("iterations", 30);
     tolerance_ = d.getOrDefault<scalar>("tolerance", 1e-2);
     projectionTolerance_ = d.getOrDefault<scalar>("projectionTolerance", 1e-2);
+    theta_ = d.getOrDefault<scalar>("theta", 1);
     if
     (
         iterations_ < 1
@@ -50,6 +52,14 @@ void Foam::carriedImplicitForce::read(const dictionary& coeffs)
             << "; }: give at least 1 iteration and tolerances in (0, 1)"
             << " (relative: of the nodes' velocity change, and of the"
             << " projection's Poisson solves)" << exit(FatalIOError);
+    }
+    if (!(theta_ >= 0.5) || !(theta_ <= 1))
+    {
+        FatalIOErrorInFunction(d)
+            << "fvOption " << owner_ << ": implicitForce { theta " << theta_
+            << "; }: give theta in [0.5, 1] (the force of x^n + theta dt"
+            << " v^{n+1}: below 0.5 the stiff modes grow)"
+            << exit(FatalIOError);
     }
     const word& scheme = map_.ddtScheme();
     if (scheme != "Euler" && scheme != "backward")

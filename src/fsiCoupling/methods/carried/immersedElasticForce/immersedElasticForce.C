@@ -322,10 +322,11 @@ void Foam::fv::immersedElasticForce::spreadForce
     const scalar beta = stepDamping_ > 0 ? stepDamping_*dt : baseDamping_;
     if (implicitForce_.valid())
     {
-        // the look-ahead force: of x + (dt + beta) v, the configuration
-        // the nodes reach at the step's end at their present velocity
-        // (correctImplicit() adds the change of that velocity)
-        solid_->setStiffnessDamping(dt + beta);
+        // the look-ahead force: of x + (theta dt + beta) v, the
+        // configuration the nodes reach at the step's end (theta 1) or
+        // middle (1/2) at their present velocity (correctImplicit() adds
+        // the change of that velocity)
+        solid_->setStiffnessDamping(implicitForce_->theta()*dt + beta);
     }
     else if (stepDamping_ > 0)
     {
@@ -685,18 +686,20 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
     // under Euler, 2 dt/3 under backward: 3 u^{n+1}/(2 dt))
     const scalar a = implicitForce_->response(dt);
 
-    // The force of the step's end, F(x^n + (dt + beta) v^{n+1}), is the
-    // look-ahead force handed to the fluid, F(x^n + (dt + beta) v^n),
-    // less (dt + beta) K dv, dv = v^{n+1} - v^n: the fluid's response to
-    // it, a (dt + beta) D K dv (D K the map of carriedCouplingMap), taken
-    // with the velocity change the look-ahead force gave, r:
-    //     (I + a (dt + beta) D K) dv = r
+    // The force F(x^n + (theta dt + beta) v^{n+1}) (theta 1: of the
+    // step's end) is the look-ahead force handed to the fluid,
+    // F(x^n + (theta dt + beta) v^n), less (theta dt + beta) K dv,
+    // dv = v^{n+1} - v^n: the fluid's response to it,
+    // a (theta dt + beta) D K dv (D K the map of carriedCouplingMap),
+    // taken with the velocity change the look-ahead force gave, r:
+    //     (I + a (theta dt + beta) D K) dv = r
+    const scalar lookAhead = implicitForce_->theta()*dt + beta;
     const vectorField r(cmptMultiply(v - lastVelocity_, free_));
     vectorField dv;
     const label iterations = implicitForce_->solve
     (
         r,
-        a*(dt + beta),
+        a*lookAhead,
         free_,
         stiffnessMap(),
         forceFluxMap(),
@@ -712,7 +715,7 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
             << mesh_.time().timeName() << ": " << why.c_str()
             << exit(FatalError);
     }
-    dF *= (dt + beta);
+    dF *= lookAhead;
 
     // the fluid corrected by the force's change, projected (one more
     // Poisson solve, by the final pressure solver): flux, cells (the
