@@ -354,7 +354,7 @@ void Foam::fv::immersedElasticForce::spreadForce
     // the node and its drift xi (the target points of immersed boundary
     // methods; Peskin, Acta Numerica 11:479, 2002, Sect. 6):
     //     F_i = -(alpha v_i + beta xi_i/dt)/(dt D_i),  xi_i += dt v_i
-    // The drift's term is a spring of stiffness beta/(dt^2 D_i): at a
+    // The drift's term is a spring of stiffness tetherStiffness/(dt^2 D_i): at a
     // change of step the drift is scaled by (dt/dt_old)^2, so the force
     // it holds carries over (unscaled, a step cut by 4 would multiply it
     // by 16). On a restart the first update's step is the one the drift
