@@ -917,6 +917,7 @@ bool Foam::fv::immersedElasticForce::updateForce()
     if (implicitForce_.valid())
     {
         correctImplicit(v);
+        clock.timeIncrement();  // counted in implicitTime_, not the solid's
     }
     string why;
     if (!solid_->tryMoveWith(v, dt, why))
