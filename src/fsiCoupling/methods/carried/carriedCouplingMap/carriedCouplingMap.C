@@ -89,24 +89,11 @@ Foam::tmp<Foam::surfaceScalarField> Foam::carriedCouplingMap::project
     {
         qEqn.setReference(Pstream::master() ? 0 : -1, 0);
     }
-    // the pressure's solver, to relTol (an eigenvector's accuracy: 1e-4);
-    // relTol < 0: the final pressure solver's own settings (pFinal), as
-    // the fluid's step converges its divergence-free flux
-    const bool final = relTol < 0;
-    const word solverName
-    (
-        final
-     && static_cast<const IOdictionary&>(static_cast<const solution&>(mesh_))
-           .subDict("solvers").found("pFinal")
-      ? "pFinal"
-      : "p"
-    );
-    dictionary solverDict(mesh_.solverDict(solverName));
-    if (!final)
-    {
-        solverDict.set("relTol", relTol);
-        solverDict.set("tolerance", 1e-30);
-    }
+    // the pressure's solver, to relTol of the right-hand side's own
+    // residual (its tolerance made irrelevant)
+    dictionary solverDict(mesh_.solverDict("p"));
+    solverDict.set("relTol", relTol);
+    solverDict.set("tolerance", 1e-30);
     // quietly: the map's users count its solves (solves())
     const int debug = solverPerformance::debug;
     solverPerformance::debug = 0;

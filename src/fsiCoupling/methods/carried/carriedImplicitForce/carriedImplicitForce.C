@@ -21,6 +21,7 @@ Foam::carriedImplicitForce::carriedImplicitForce
     iterations_(30),
     tolerance_(1e-2),
     projectionTolerance_(1e-2),
+    correctionTolerance_(1e-4),
     theta_(1),
     lastIterations_(0),
     lastResidual_(0)
@@ -37,21 +38,25 @@ void Foam::carriedImplicitForce::read(const dictionary& coeffs)
     iterations_ = d.getOrDefault<label>("iterations", 30);
     tolerance_ = d.getOrDefault<scalar>("tolerance", 1e-2);
     projectionTolerance_ = d.getOrDefault<scalar>("projectionTolerance", 1e-2);
+    correctionTolerance_ = d.getOrDefault<scalar>("correctionTolerance", 1e-4);
     theta_ = d.getOrDefault<scalar>("theta", 1);
     if
     (
         iterations_ < 1
      || !(tolerance_ > 0) || !(tolerance_ < 1)
      || !(projectionTolerance_ > 0) || !(projectionTolerance_ < 1)
+     || !(correctionTolerance_ > 0) || !(correctionTolerance_ < 1)
     )
     {
         FatalIOErrorInFunction(d)
             << "fvOption " << owner_ << ": implicitForce { iterations "
             << iterations_ << "; tolerance " << tolerance_
             << "; projectionTolerance " << projectionTolerance_
+            << "; correctionTolerance " << correctionTolerance_
             << "; }: give at least 1 iteration and tolerances in (0, 1)"
-            << " (relative: of the nodes' velocity change, and of the"
-            << " projection's Poisson solves)" << exit(FatalIOError);
+            << " (relative: of the nodes' velocity change, of the map's"
+            << " Poisson solves and of the correction's)"
+            << exit(FatalIOError);
     }
     if (!(theta_ >= 0.5) || !(theta_ <= 1))
     {
