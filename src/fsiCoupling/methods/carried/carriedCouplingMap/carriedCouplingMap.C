@@ -104,6 +104,25 @@ Foam::tmp<Foam::surfaceScalarField> Foam::carriedCouplingMap::project
 }
 
 
+Foam::tmp<Foam::vectorField> Foam::carriedCouplingMap::respond
+(
+    const vectorField& F,
+    const forceFluxMap& forceFlux,
+    const velocityMap& velocity,
+    const scalar relTol
+)
+{
+    clockTime clock;
+    const tmp<surfaceScalarField> flux(forceFlux(F));
+    applyTime_[1] += clock.timeIncrement();
+    const tmp<surfaceScalarField> projected(project(flux(), relTol));
+    applyTime_[2] += clock.timeIncrement();
+    tmp<vectorField> v(velocity(projected()));
+    applyTime_[3] += clock.timeIncrement();
+    return v;
+}
+
+
 Foam::tmp<Foam::vectorField> Foam::carriedCouplingMap::apply
 (
     const vectorField& w,
@@ -124,14 +143,8 @@ Foam::tmp<Foam::vectorField> Foam::carriedCouplingMap::apply
             << ": " << why.c_str() << exit(FatalError);
     }
     applyTime_[0] += clock.timeIncrement();
-    const tmp<surfaceScalarField> flux(forceFlux(dF));
-    applyTime_[1] += clock.timeIncrement();
-    const tmp<surfaceScalarField> projected(project(flux(), relTol));
-    applyTime_[2] += clock.timeIncrement();
     // dF = -K w: the map D K w is minus the velocity it gives
-    tmp<vectorField> v(-velocity(projected()));
-    applyTime_[3] += clock.timeIncrement();
-    return v;
+    return -respond(dF, forceFlux, velocity, relTol);
 }
 
 

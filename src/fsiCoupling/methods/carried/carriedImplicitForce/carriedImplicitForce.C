@@ -4,6 +4,7 @@
 
 #include "carriedImplicitForce.H"
 #include "PtrList.H"
+#include "clockTime.H"
 
 #include <Eigen/Dense>
 
@@ -23,6 +24,10 @@ Foam::carriedImplicitForce::carriedImplicitForce
     projectionTolerance_(1e-2),
     correctionTolerance_(1e-4),
     theta_(1),
+    implicitTethers_(true),
+    tetherDampingTime_(2e-5),
+    tetherSpringTime_(Foam::sqrt(1e-9)),
+    tetherMaxGain_(20),
     lastIterations_(0),
     lastResidual_(0)
 {
@@ -66,6 +71,34 @@ void Foam::carriedImplicitForce::read(const dictionary& coeffs)
             << " v^{n+1}: below 0.5 the stiff modes grow)"
             << exit(FatalIOError);
     }
+    const word tethers(d.getOrDefault<word>("tethers", "implicit"));
+    if (tethers != "explicit" && tethers != "implicit")
+    {
+        FatalIOErrorInFunction(d)
+            << "fvOption " << owner_ << ": implicitForce { tethers "
+            << tethers << "; }: give explicit (the feedback of"
+            << " tetherRelaxation and tetherStiffness) or implicit (in the"
+            << " solve)" << exit(FatalIOError);
+    }
+    implicitTethers_ = (tethers == "implicit");
+    tetherDampingTime_ = d.getOrDefault<scalar>("tetherDampingTime", 2e-5);
+    tetherSpringTime_ =
+        d.getOrDefault<scalar>("tetherSpringTime", Foam::sqrt(1e-9));
+    tetherMaxGain_ = d.getOrDefault<scalar>("tetherMaxGain", 20);
+    if
+    (
+        !(tetherDampingTime_ > 0) || !(tetherSpringTime_ > 0)
+     || !(tetherMaxGain_ > 0)
+    )
+    {
+        FatalIOErrorInFunction(d)
+            << "fvOption " << owner_ << ": implicitForce { tetherDampingTime "
+            << tetherDampingTime_ << "; tetherSpringTime " << tetherSpringTime_
+            << "; tetherMaxGain " << tetherMaxGain_ << "; }: give the"
+            << " tethers' time scales in seconds and their largest gain per"
+            << " step, all positive (their force -(v/t_v + xi/t_x^2)/D)"
+            << exit(FatalIOError);
+    }
     const word& scheme = map_.ddtScheme();
     if (scheme != "Euler" && scheme != "backward")
     {
@@ -79,23 +112,81 @@ void Foam::carriedImplicitForce::read(const dictionary& coeffs)
 }
 
 
+Foam::scalar Foam::carriedImplicitForce::tetherRates
+(
+    const scalar dt,
+    scalar& dampingRate,
+    scalar& springRate
+) const
+{
+    dampingRate = 1/tetherDampingTime_;
+    springRate = 1/sqr(tetherSpringTime_);
+    const scalar gain = response(dt)*(dampingRate + dt*springRate);
+    const scalar scale = gain > tetherMaxGain_ ? tetherMaxGain_/gain : 1;
+    dampingRate *= scale;
+    springRate *= scale;
+    return scale;
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::carriedImplicitForce::force
+(
+    const vectorField& x,
+    const vectorField& free,
+    const scalar lookAhead,
+    const scalarField& tetherDamping,
+    const carriedCouplingMap::stiffnessMap& stiffness
+) const
+{
+    auto tF = tmp<vectorField>::New();
+    vectorField& F = tF.ref();
+    string why;
+    if (!stiffness(cmptMultiply(x, free), F, why))
+    {
+        FatalErrorInFunction
+            << "fvOption " << owner_ << ": the leaflets' stiffness for the"
+            << " implicit force: " << why.c_str() << exit(FatalError);
+    }
+    F *= lookAhead;
+    forAll(F, i)
+    {
+        if (tetherDamping[i] > 0)
+        {
+            F[i] -= tetherDamping[i]*x[i];
+        }
+    }
+    return tF;
+}
+
+
 Foam::label Foam::carriedImplicitForce::solve
 (
     const vectorField& r,
-    const scalar s,
     const vectorField& free,
+    const scalar a,
+    const scalar lookAhead,
+    const scalarField& tetherDamping,
     const carriedCouplingMap::stiffnessMap& stiffness,
     const carriedCouplingMap::forceFluxMap& forceFlux,
     const carriedCouplingMap::velocityMap& velocity,
     vectorField& x
 )
 {
+    // the unknowns' components: the free ones and the tethers'
+    vectorField mask(free);
+    forAll(mask, i)
+    {
+        if (tetherDamping[i] > 0)
+        {
+            mask[i] = vector::one;
+        }
+    }
     const label maxIter = iterations_;
     const scalar tol = tolerance_;
     scalar& residual = lastResidual_;
     x.setSize(r.size());
     x = Zero;
-    const scalar rNorm = Foam::sqrt(sum(magSqr(cmptMultiply(r, free))));
+    const scalar rNorm = Foam::sqrt(sum(magSqr(cmptMultiply(r, mask))));
     residual = 0;
     if (!(rNorm > 0))
     {
@@ -106,23 +197,27 @@ Foam::label Foam::carriedImplicitForce::solve
     // problem min |rNorm e_1 - H y| solved afresh each iteration (QR).
     // The solid is the same on every rank: no reductions
     PtrList<vectorField> Q(maxIter + 1);
-    Q.set(0, new vectorField(cmptMultiply(r, free)/rNorm));
+    Q.set(0, new vectorField(cmptMultiply(r, mask)/rNorm));
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(maxIter + 1, maxIter);
     Eigen::VectorXd y;
     label k = 0;
     residual = 1;
     for (; k < maxIter && residual > tol; ++k)
     {
+        // Q_k - a D force(Q_k) (without tethers Q_k + a L D K_T Q_k)
+        clockTime clock;
+        const vectorField Fk
+        (
+            force(Q[k], free, lookAhead, tetherDamping, stiffness)
+        );
+        map_.countStiffness(clock.timeIncrement());
         vectorField v
         (
-            Q[k]
-          + s*cmptMultiply
+            cmptMultiply
             (
-                map_.apply
-                (
-                    Q[k], stiffness, forceFlux, velocity, projectionTolerance_
-                )(),
-                free
+                Q[k]
+              - a*map_.respond(Fk, forceFlux, velocity, projectionTolerance_),
+                mask
             )
         );
         H(k + 1, k) = carriedCouplingMap::orthogonalise(Q, k, v, H);

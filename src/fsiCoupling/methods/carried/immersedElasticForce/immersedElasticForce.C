@@ -310,6 +310,12 @@ void Foam::fv::immersedElasticForce::setTetherMobility()
 }
 
 
+bool Foam::fv::immersedElasticForce::implicitTethers() const
+{
+    return implicitForce_.valid() && implicitForce_->implicitTethers();
+}
+
+
 void Foam::fv::immersedElasticForce::spreadForce
 (
     const vectorField& v,
@@ -359,7 +365,24 @@ void Foam::fv::immersedElasticForce::spreadForce
     // it holds carries over (unscaled, a step cut by 4 would multiply it
     // by 16). On a restart the first update's step is the one the drift
     // was written with (uniform/time's deltaT), so nothing is scaled.
-    if (tetherDriftStep_ > 0 && dt != tetherDriftStep_)
+    // In the implicit force's solve instead (carriedImplicitForce.H) a
+    // damper and a spring per unit time, -(v/t_v + xi/t_x^2)/D_i at the
+    // step's end: the look-ahead of v and xi + dt v here (the drift
+    // rescaled only where the rates' scale changes, so that the spring's
+    // force carries over: carriedImplicitForce::tetherRates).
+    const bool implicitTethers = this->implicitTethers();
+    scalar dampingRate = 0, springRate = 0;
+    if (implicitTethers)
+    {
+        const scalar scale =
+            implicitForce_->tetherRates(dt, dampingRate, springRate);
+        if (tetherRateScale_ > 0 && scale != tetherRateScale_)
+        {
+            tetherDrift_ *= tetherRateScale_/scale;
+        }
+        tetherRateScale_ = scale;
+    }
+    else if (tetherDriftStep_ > 0 && dt != tetherDriftStep_)
     {
         tetherDrift_ *= sqr(dt/tetherDriftStep_);
     }
@@ -374,8 +397,19 @@ void Foam::fv::immersedElasticForce::spreadForce
                 tetherDrift_[i] += dt*v[i];
             }
             const vector Ft =
-                -(tetherRelaxation_*v[i] + tetherStiffness_*tetherDrift_[i]/dt)
-               /(dt*tetherMobility_[i]);
+                implicitTethers
+              ? vector
+                (
+                   -(
+                        dampingRate*v[i]
+                      + springRate*(tetherDrift_[i] + dt*v[i])
+                    )/tetherMobility_[i]
+                )
+              : vector
+                (
+                   -(tetherRelaxation_*v[i] + tetherStiffness_*tetherDrift_[i]/dt)
+                   /(dt*tetherMobility_[i])
+                );
             F[i] += Ft;
             tetherForce_ += Ft;
         }
@@ -444,6 +478,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     tethered_(),
     tetherDrift_(),
     tetherDriftStep_(0),
+    tetherRateScale_(0),
     lastVelocity_(),
     tetherRank_(),
     stencilsBuilt_(false),
@@ -694,28 +729,45 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
     // taken with the velocity change the look-ahead force gave, r:
     //     (I + a (theta dt + beta) D K) dv = r
     const scalar lookAhead = implicitForce_->theta()*dt + beta;
-    const vectorField r(cmptMultiply(v - lastVelocity_, free_));
+    // the tethers in the solve (carriedImplicitForce.H): their velocity
+    // change too, with the damping (1/t_v + dt/t_x^2)/D_i
+    vectorField mask(free_);
+    scalarField tetherDamping(v.size(), 0);
+    if (implicitTethers())
+    {
+        scalar dampingRate = 0, springRate = 0;
+        implicitForce_->tetherRates(dt, dampingRate, springRate);
+        const scalar rate = dampingRate + dt*springRate;
+        forAll(v, i)
+        {
+            if (tethered_[i] && tetherMobility_[i] > 0)
+            {
+                tetherDamping[i] = rate/tetherMobility_[i];
+                mask[i] = vector::one;
+            }
+        }
+    }
+    const vectorField r(cmptMultiply(v - lastVelocity_, mask));
     vectorField dv;
     const label iterations = implicitForce_->solve
     (
         r,
-        a*lookAhead,
         free_,
+        a,
+        lookAhead,
+        tetherDamping,
         stiffnessMap(),
         forceFluxMap(),
         velocityMap(),
         dv
     );
-    vectorField dF;
-    string why;
-    if (!solid_->stiffnessAction(dv, dF, why))
-    {
-        FatalErrorInFunction
-            << "fvOption " << name_ << ": the implicit force at time "
-            << mesh_.time().timeName() << ": " << why.c_str()
-            << exit(FatalError);
-    }
-    dF *= lookAhead;
+    const vectorField dF
+    (
+        implicitForce_->force
+        (
+            dv, free_, lookAhead, tetherDamping, stiffnessMap()
+        )
+    );
 
     // the fluid corrected by the force's change, projected (one more
     // Poisson solve, by the pressure's solver to correctionTolerance of
@@ -753,7 +805,7 @@ void Foam::fv::immersedElasticForce::correctImplicit(vectorField& v)
     Info<< type() << ' ' << name_ << ": implicit force: " << iterations
         << " iterations, residual " << implicitForce_->residual() << "; |r| "
         << max(mag(r)) << ", |dv| " << max(mag(dv)) << ", |v - v^n - dv| "
-        << max(mag(cmptMultiply(v - lastVelocity_ - dv, free_)))
+        << max(mag(cmptMultiply(v - lastVelocity_ - dv, mask)))
         << " m/s; force change at the nodes " << sum(dF) << " N; "
         << implicitTime_ << " s so far (map: stiffness, flux,"
         << " projection, velocity " << couplingMap_.applyTime() << " s)"
