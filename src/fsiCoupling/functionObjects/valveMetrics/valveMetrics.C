@@ -245,6 +245,68 @@ void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
     setParts(s);
     setSurfaces(s);
 
+    // each node's fewest edges to the surface (breadth-first from the
+    // surface nodes), and per part the largest over its elements of the
+    // fewest of their nodes' (partDepthBound)
+    const List<solidTet>& tets = s.elements();
+    {
+        labelListList neighbours(s.nPoints());
+        {
+            List<DynamicList<label>> nbr(s.nPoints());
+            for (const solidTet& t : tets)
+            {
+                for (label a = 0; a < 4; ++a)
+                {
+                    for (label b = 0; b < 4; ++b)
+                    {
+                        if (a != b && !nbr[t[a]].found(t[b]))
+                        {
+                            nbr[t[a]].append(t[b]);
+                        }
+                    }
+                }
+            }
+            forAll(nbr, i)
+            {
+                neighbours[i].transfer(nbr[i]);
+            }
+        }
+        labelList edges(s.nPoints(), -1);
+        DynamicList<label> front(surfaceNodes_);
+        for (const label i : surfaceNodes_)
+        {
+            edges[i] = 0;
+        }
+        while (front.size())
+        {
+            DynamicList<label> next;
+            for (const label i : front)
+            {
+                for (const label j : neighbours[i])
+                {
+                    if (edges[j] < 0)
+                    {
+                        edges[j] = edges[i] + 1;
+                        next.append(j);
+                    }
+                }
+            }
+            front.transfer(next);
+        }
+        partDepthEdges_.setSize(nParts_);
+        partDepthEdges_ = 0;
+        for (const solidTet& t : tets)
+        {
+            label fewest = labelMax;
+            for (const label i : t)
+            {
+                fewest = min(fewest, edges[i]);
+            }
+            const label parti = nodePart_[t[0]];
+            partDepthEdges_[parti] = max(partDepthEdges_[parti], fewest);
+        }
+    }
+
     // tributary areas of the reference surface (PenaltyContact: a third
     // of each boundary triangle's area to each of its nodes)
     const pointField& X = s.points0();
@@ -421,11 +483,55 @@ Foam::scalar Foam::functionObjects::valveMetrics::orificeArea
 }
 
 
+Foam::scalarField Foam::functionObjects::valveMetrics::partDepthBound
+(
+    const pointField& x
+) const
+{
+    // A point q of an element lies within the element's longest edge of
+    // each of its nodes v (the distance from v over the tetrahedron is
+    // largest at a vertex), and v within k L of the surface when k edges
+    // of length at most L lead from it to a surface node: so q lies
+    // within (k + 1) L of the part's surface, k the fewest edges of the
+    // element's nodes (partDepthEdges_)
+    scalarField L(nParts_, 0);
+    for (const solidTet& t : solid_->elements())
+    {
+        const label parti = nodePart_[t[0]];
+        for (label a = 0; a < 4; ++a)
+        {
+            for (label b = a + 1; b < 4; ++b)
+            {
+                L[parti] = max(L[parti], magSqr(x[t[a]] - x[t[b]]));
+            }
+        }
+    }
+    scalarField bound(nParts_);
+    forAll(bound, parti)
+    {
+        bound[parti] = (partDepthEdges_[parti] + 1)*Foam::sqrt(L[parti]);
+    }
+    return bound;
+}
+
+
 Foam::scalar Foam::functionObjects::valveMetrics::leafletGap
 (
     const pointField& x
 ) const
 {
+    // The octree's nearest search within a radius rho finds every node
+    // whose distance to the part's surface is below rho. A node inside
+    // part j lies within depth_j of its surface (partDepthBound), so a
+    // search with rho >= depth_j finds every node inside it, and a node
+    // it misses lies outside, farther than rho: it cannot lower a gap
+    // already at most rho. Each part is searched with rho the larger of
+    // depth_j and the smallest gap so far; while no gap is known, from
+    // twice the last row's gap (a guess only), widened fourfold until a
+    // node is found. The result is the exhaustive search's.
+    const scalarField depth(partDepthBound(x));
+    const boundBox bb(x, false);
+    const scalar span = bb.mag();
     scalar gap = GREAT;
     for (label partj = 0; partj < nParts_; ++partj)
     {
@@ -439,30 +545,56 @@ Foam::scalar Foam::functionObjects::valveMetrics::leafletGap
             pointField(UIndirectList<point>(x, partPoints_[partj]))
         );
         const triSurfaceSearch search(surf);
-        for (const label nodei : surfaceNodes_)
+        scalar rho = depth[partj];
+        if (gap < GREAT)
         {
-            if (nodePart_[nodei] == partj)
+            rho = max(rho, gap);
+        }
+        else if (lastLeafletGap_ > 0)
+        {
+            rho = max(rho, 2*lastLeafletGap_);
+        }
+        while (true)
+        {
+            bool found = false;
+            for (const label nodei : surfaceNodes_)
             {
-                continue;
+                if (nodePart_[nodei] == partj)
+                {
+                    continue;
+                }
+                const point& p = x[nodei];
+                // (strictly within the radius: widened by a rounding)
+                const pointIndexHit hit =
+                    search.tree().findNearest(p, sqr(rho*(1 + 1e-9)));
+                if (!hit.hit())
+                {
+                    continue;
+                }
+                found = true;
+                scalar d = mag(p - hit.hitPoint());
+                if
+                (
+                    triSurfaceTools::surfaceSide(surf, p, hit.index())
+                 == triSurfaceTools::INSIDE
+                )
+                {
+                    d = -d;     // inside the other leaflet
+                }
+                gap = min(gap, d);
             }
-            const point& p = x[nodei];
-            const pointIndexHit hit = search.tree().findNearest(p, sqr(GREAT));
-            if (!hit.hit())
+            // found: every node missed is farther than rho, and the
+            // smallest found at most rho; a gap known from another part:
+            // rho is at least that gap. Beyond the solid's span (or none
+            // to search) every node has been found
+            if (found || gap < GREAT || rho > span || !(rho > 0))
             {
-                continue;
+                break;
             }
-            scalar d = mag(p - hit.hitPoint());
-            if
-            (
-                triSurfaceTools::surfaceSide(surf, p, hit.index())
-             == triSurfaceTools::INSIDE
-            )
-            {
-                d = -d;     // inside the other leaflet
-            }
-            gap = min(gap, d);
+            rho *= 4;
         }
     }
+    lastLeafletGap_ = gap < GREAT ? gap : -1;
     return gap;
 }
 
@@ -635,6 +767,7 @@ Foam::functionObjects::valveMetrics::valveMetrics
     solid_(nullptr),
     solidReady_(false),
     nParts_(0),
+    lastLeafletGap_(-1),
     warnedTime_(false)
 {
     read(dict);
