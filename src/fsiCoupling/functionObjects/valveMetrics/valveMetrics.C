@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "valveMetrics.H"
+#include "processorPolyPatch.H"
 #include "immersedMethod.H"
 #include "immersedSolid.H"
 #include "deformableSolid.H"
@@ -333,29 +334,46 @@ void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
 }
 
 
-void Foam::functionObjects::valveMetrics::setWall()
+Foam::autoPtr<Foam::triSurface>
+Foam::functionObjects::valveMetrics::gatherPatches
+(
+    const labelList& patches
+) const
 {
-    const polyPatch& pp = mesh_.boundaryMesh()[wallPatch_];
-
     // local triangles (fan triangulation keeps the outward orientation)
     List<pointField> allPoints(Pstream::nProcs());
     List<List<labelledTri>> allTris(Pstream::nProcs());
-    allPoints[Pstream::myProcNo()] = pp.localPoints();
-    DynamicList<labelledTri> tris;
-    for (const face& f : pp.localFaces())
     {
-        for (label k = 1; k < f.size() - 1; ++k)
+        DynamicList<point> points;
+        DynamicList<labelledTri> tris;
+        for (const label patchi : patches)
         {
-            tris.append(labelledTri(f[0], f[k], f[k + 1], 0));
+            const polyPatch& pp = mesh_.boundaryMesh()[patchi];
+            const label start = points.size();
+            points.append(pp.localPoints());
+            for (const face& f : pp.localFaces())
+            {
+                for (label k = 1; k < f.size() - 1; ++k)
+                {
+                    tris.append
+                    (
+                        labelledTri
+                        (
+                            start + f[0], start + f[k], start + f[k + 1], 0
+                        )
+                    );
+                }
+            }
         }
+        allPoints[Pstream::myProcNo()].transfer(points);
+        allTris[Pstream::myProcNo()].transfer(tris);
     }
-    allTris[Pstream::myProcNo()].transfer(tris);
     Pstream::gatherList(allPoints);
     Pstream::gatherList(allTris);
 
     if (!Pstream::master())
     {
-        return;
+        return autoPtr<triSurface>::New();
     }
 
     label nPoints = 0;
@@ -385,8 +403,9 @@ void Foam::functionObjects::valveMetrics::setWall()
         nPoints += allPoints[proci].size();
     }
 
-    // the points processor patches share (copies of the same mesh points)
-    if (Pstream::parRun() && points.size())
+    // the points that patches and ranks share (copies of the same mesh
+    // points)
+    if (points.size())
     {
         labelList pointMap;
         pointField merged;
@@ -402,8 +421,27 @@ void Foam::functionObjects::valveMetrics::setWall()
         points.transfer(merged);
     }
 
-    wall_.reset(new triSurface(faces, points));
+    return autoPtr<triSurface>::New(faces, points);
+}
+
+
+void Foam::functionObjects::valveMetrics::setWall()
+{
+    wall_ = gatherPatches(labelList(one(), wallPatch_));
     wallSearch_.reset(new triSurfaceSearch(wall_()));
+
+    // the fluid domain's boundary, closed: every patch but the processor
+    // patches (the ranks' boundaries)
+    DynamicList<label> patches;
+    forAll(mesh_.boundaryMesh(), patchi)
+    {
+        if (!isA<processorPolyPatch>(mesh_.boundaryMesh()[patchi]))
+        {
+            patches.append(patchi);
+        }
+    }
+    domain_ = gatherPatches(patches);
+    domainSearch_.reset(new triSurfaceSearch(domain_()));
 }
 
 
@@ -610,31 +648,70 @@ Foam::scalar Foam::functionObjects::valveMetrics::wallGap
     }
     const pointField& x = s.points();
     const vectorField free(s.freeComponents());
-    scalar gap = GREAT;
+    // The nodes inside the fluid domain (its closed boundary's octree) are
+    // searched within rho, the smallest gap so far (while none is known,
+    // twice the last row's gap, widened fourfold until a node is found):
+    // a node inside the fluid that the search misses lies farther than
+    // rho from the wall and cannot lower the gap. A node outside the
+    // fluid (behind the wall) is searched without bound. The result is
+    // the exhaustive search's
+    DynamicList<label> nodes(surfaceNodes_.size());
     for (const label nodei : surfaceNodes_)
     {
         if (free.size() && cmptSum(free[nodei]) == 0)
         {
             continue;   // held (the attachment)
         }
-        const point& p = x[nodei];
-        const pointIndexHit hit =
-            wallSearch_().tree().findNearest(p, sqr(GREAT));
-        if (!hit.hit())
-        {
-            continue;
-        }
-        scalar d = mag(p - hit.hitPoint());
-        if
-        (
-            triSurfaceTools::surfaceSide(wall_(), p, hit.index())
-         == triSurfaceTools::OUTSIDE
-        )
-        {
-            d = -d;     // behind the wall (its normals leave the fluid)
-        }
-        gap = min(gap, d);
+        nodes.append(nodei);
     }
+    const boolList inside
+    (
+        domainSearch_.valid() && domain_().size()
+      ? domainSearch_().calcInside(pointField(UIndirectList<point>(x, nodes)))
+      : boolList(nodes.size(), false)
+    );
+    // (no node lies farther than span from the wall)
+    boundBox bb(wall_().points(), false);
+    bb.add(pointField(UIndirectList<point>(x, nodes)));
+    const scalar span = bb.mag();
+    scalar rho = lastWallGap_ > 0 ? 2*lastWallGap_ : GREAT;
+    scalar gap = GREAT;
+    while (true)
+    {
+        forAll(nodes, k)
+        {
+            const point& p = x[nodes[k]];
+            const scalar r = inside[k] ? min(rho, gap) : GREAT;
+            const pointIndexHit hit =
+                wallSearch_().tree().findNearest
+                (
+                    p,
+                    r < GREAT ? sqr(r*(1 + 1e-9)) : sqr(GREAT)
+                );
+            if (!hit.hit())
+            {
+                continue;
+            }
+            scalar d = mag(p - hit.hitPoint());
+            if
+            (
+                triSurfaceTools::surfaceSide(wall_(), p, hit.index())
+             == triSurfaceTools::OUTSIDE
+            )
+            {
+                d = -d;     // behind the wall (its normals leave the fluid)
+            }
+            gap = min(gap, d);
+        }
+        // every node missed lies inside the fluid, farther than rho: done
+        // when the gap is at most rho
+        if (gap <= rho || nodes.empty() || rho > span)
+        {
+            break;
+        }
+        rho *= 4;
+    }
+    lastWallGap_ = gap < GREAT ? gap : -1;
     return gap;
 }
 
@@ -768,6 +845,7 @@ Foam::functionObjects::valveMetrics::valveMetrics
     solidReady_(false),
     nParts_(0),
     lastLeafletGap_(-1),
+    lastWallGap_(-1),
     warnedTime_(false)
 {
     read(dict);
@@ -890,6 +968,8 @@ bool Foam::functionObjects::valveMetrics::read(const dictionary& dict)
     solidReady_ = false;
     wallSearch_.clear();
     wall_.clear();
+    domainSearch_.clear();
+    domain_.clear();
     setDiscCells();
 
     return true;
