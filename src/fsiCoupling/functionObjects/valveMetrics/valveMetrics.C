@@ -12,6 +12,7 @@
 #include "surfaceFields.H"
 #include "triSurfaceTools.H"
 #include "mergePoints.H"
+#include "clockTime.H"
 #include "nullObject.H"
 #include "vector2D.H"
 #include "addToRunTimeSelectionTable.H"
@@ -1073,6 +1074,7 @@ Foam::scalar Foam::functionObjects::valveMetrics::peakAxialVelocity
 
 bool Foam::functionObjects::valveMetrics::write()
 {
+    clockTime clock;
     const immersedSolid& s = *solid_;
     prepare(s);
 
@@ -1116,7 +1118,8 @@ bool Foam::functionObjects::valveMetrics::write()
         << " kPa, maxVonMises " << maxVonMises*1e-3 << " kPa, contactForce "
         << contactForce << " N, gapLeaflets "
         << (nParts_ > 1 ? mm(gapL) : 0) << " mm, gapWall " << mm(gapW)
-        << " mm, leak " << leak << " m3/s" << endl;
+        << " mm, leak " << leak << " m3/s; the row took "
+        << clock.elapsedTime() << " s" << endl;
 
     if (!writeToFile())
     {
