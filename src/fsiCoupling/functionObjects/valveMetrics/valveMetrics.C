@@ -242,72 +242,78 @@ void Foam::functionObjects::valveMetrics::setSurfaces(const immersedSolid& s)
 }
 
 
-void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
+void Foam::functionObjects::valveMetrics::setPartDepths
+(
+    const immersedSolid& s
+)
 {
-    setParts(s);
-    setSurfaces(s);
-
     // each node's fewest edges to the surface (breadth-first from the
     // surface nodes), and per part the largest over its elements of the
     // fewest of their nodes' (partDepthBound)
     const List<solidTet>& tets = s.elements();
+    labelListList neighbours(s.nPoints());
     {
-        labelListList neighbours(s.nPoints());
-        {
-            List<DynamicList<label>> nbr(s.nPoints());
-            for (const solidTet& t : tets)
-            {
-                for (label a = 0; a < 4; ++a)
-                {
-                    for (label b = 0; b < 4; ++b)
-                    {
-                        if (a != b && !nbr[t[a]].found(t[b]))
-                        {
-                            nbr[t[a]].append(t[b]);
-                        }
-                    }
-                }
-            }
-            forAll(nbr, i)
-            {
-                neighbours[i].transfer(nbr[i]);
-            }
-        }
-        labelList edges(s.nPoints(), -1);
-        DynamicList<label> front(surfaceNodes_);
-        for (const label i : surfaceNodes_)
-        {
-            edges[i] = 0;
-        }
-        while (front.size())
-        {
-            DynamicList<label> next;
-            for (const label i : front)
-            {
-                for (const label j : neighbours[i])
-                {
-                    if (edges[j] < 0)
-                    {
-                        edges[j] = edges[i] + 1;
-                        next.append(j);
-                    }
-                }
-            }
-            front.transfer(next);
-        }
-        partDepthEdges_.setSize(nParts_);
-        partDepthEdges_ = 0;
+        List<DynamicList<label>> nbr(s.nPoints());
         for (const solidTet& t : tets)
         {
-            label fewest = labelMax;
-            for (const label i : t)
+            for (label a = 0; a < 4; ++a)
             {
-                fewest = min(fewest, edges[i]);
+                for (label b = 0; b < 4; ++b)
+                {
+                    if (a != b && !nbr[t[a]].found(t[b]))
+                    {
+                        nbr[t[a]].append(t[b]);
+                    }
+                }
             }
-            const label parti = nodePart_[t[0]];
-            partDepthEdges_[parti] = max(partDepthEdges_[parti], fewest);
+        }
+        forAll(nbr, i)
+        {
+            neighbours[i].transfer(nbr[i]);
         }
     }
+    labelList edges(s.nPoints(), -1);
+    DynamicList<label> front(surfaceNodes_);
+    for (const label i : surfaceNodes_)
+    {
+        edges[i] = 0;
+    }
+    while (front.size())
+    {
+        DynamicList<label> next;
+        for (const label i : front)
+        {
+            for (const label j : neighbours[i])
+            {
+                if (edges[j] < 0)
+                {
+                    edges[j] = edges[i] + 1;
+                    next.append(j);
+                }
+            }
+        }
+        front.transfer(next);
+    }
+    partDepthEdges_.setSize(nParts_);
+    partDepthEdges_ = 0;
+    for (const solidTet& t : tets)
+    {
+        label fewest = labelMax;
+        for (const label i : t)
+        {
+            fewest = min(fewest, edges[i]);
+        }
+        const label parti = nodePart_[t[0]];
+        partDepthEdges_[parti] = max(partDepthEdges_[parti], fewest);
+    }
+}
+
+
+void Foam::functionObjects::valveMetrics::setSolid(const immersedSolid& s)
+{
+    setParts(s);
+    setSurfaces(s);
+    setPartDepths(s);
 
     // tributary areas of the reference surface (PenaltyContact: a third
     // of each boundary triangle's area to each of its nodes)
