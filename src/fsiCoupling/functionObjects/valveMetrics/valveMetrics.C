@@ -601,7 +601,6 @@ Foam::scalar Foam::functionObjects::valveMetrics::leafletGap
         }
         while (true)
         {
-            bool found = false;
             for (const label nodei : surfaceNodes_)
             {
                 if (nodePart_[nodei] == partj)
@@ -616,7 +615,6 @@ Foam::scalar Foam::functionObjects::valveMetrics::leafletGap
                 {
                     continue;
                 }
-                found = true;
                 scalar d = mag(p - hit.hitPoint());
                 if
                 (
@@ -628,11 +626,11 @@ Foam::scalar Foam::functionObjects::valveMetrics::leafletGap
                 }
                 gap = min(gap, d);
             }
-            // found: every node missed is farther than rho, and the
-            // smallest found at most rho; a gap known from another part:
-            // rho is at least that gap. Beyond the solid's span (or none
-            // to search) every node has been found
-            if (found || gap < GREAT || rho > span || !(rho > 0))
+            // a gap known (found in this pass, at most rho, or from
+            // another part, which rho is at least): every node missed is
+            // farther than rho and cannot lower it. Beyond the solid's
+            // span (or none to search) every node has been found
+            if (gap < GREAT || rho > span || !(rho > 0))
             {
                 break;
             }
