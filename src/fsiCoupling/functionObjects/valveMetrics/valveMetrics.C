@@ -816,6 +816,12 @@ void Foam::functionObjects::valveMetrics::writeFileHeader(Ostream& os)
     {
         writeTabbed(os, col);
     }
+    if (beat_.valid())
+    {
+        writeTabbed(os, "p_upstream[mmHg]");
+        writeTabbed(os, "p_downstream[mmHg]");
+        writeTabbed(os, "v_jet[m/s]");
+    }
     os  << endl;
 }
 
@@ -851,7 +857,11 @@ Foam::functionObjects::valveMetrics::valveMetrics
     nParts_(0),
     lastLeafletGap_(-1),
     lastWallGap_(-1),
-    warnedTime_(false)
+    warnedTime_(false),
+    upstream_(Zero),
+    downstream_(Zero),
+    upstreamCell_(-1),
+    downstreamCell_(-1)
 {
     read(dict);
 }
@@ -976,13 +986,194 @@ bool Foam::functionObjects::valveMetrics::read(const dictionary& dict)
     domainSearch_.clear();
     domain_.clear();
     setDiscCells();
+    readBeats(dict);
 
     return true;
 }
 
 
+Foam::label Foam::functionObjects::valveMetrics::sampleCell
+(
+    const dictionary& dict,
+    const word& key,
+    const point& p
+) const
+{
+    const label celli = mesh_.findCell(p);
+    if (returnReduce(celli >= 0 ? 1 : 0, sumOp<label>()) == 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "function object " << name() << " in " << dict.name()
+            << ": entry beats." << key << ' ' << p
+            << " lies outside the fluid mesh: give a point inside it [m]"
+            << exit(FatalIOError);
+    }
+    return celli;
+}
+
+
+void Foam::functionObjects::valveMetrics::readBeats(const dictionary& dict)
+{
+    beat_.clear();
+    beatFile_.clear();
+    previousBeat_.clear();
+    if (!dict.found("beats"))
+    {
+        return;
+    }
+    const dictionary& b = dict.subDict("beats");
+    const scalar period = b.get<scalar>("period");
+    checkPositive(b, "period", period);
+    const scalar start = b.getOrDefault<scalar>("start", 0);
+    const scalar fraction = b.getOrDefault<scalar>("openFraction", 0.1);
+    if (!(fraction > 0 && fraction < 1))
+    {
+        FatalIOErrorInFunction(b)
+            << "function object " << name() << " in " << dict.name()
+            << ": entry beats.openFraction " << fraction
+            << " must lie between 0 and 1" << exit(FatalIOError);
+    }
+    upstream_ = b.get<point>("upstream");
+    downstream_ = b.get<point>("downstream");
+    upstreamCell_ = sampleCell(dict, "upstream", upstream_);
+    downstreamCell_ = sampleCell(dict, "downstream", downstream_);
+
+    // the jet: the disc's cells from the origin's plane to the downstream
+    // point
+    const scalar zDown = (downstream_ - origin_) & axis_;
+    DynamicList<label> jet(discCells_.size());
+    forAll(discCells_, k)
+    {
+        if (discCellAxial_[k] >= 0 && discCellAxial_[k] <= zDown)
+        {
+            jet.append(discCells_[k]);
+        }
+    }
+    jetCells_.transfer(jet);
+
+    beat_.reset(new valveBeat(period, rho_, fraction));
+    const scalar t = time_.value();
+    beat_->restartAt(t, start);
+    if (Pstream::master() && writeToFile())
+    {
+        beatFile_ = createFile("beats");
+        writeHeader(beatFile_(), "Valve metrics per beat (src/fsiCoupling/functionObjects/valveMetrics/valveBeat.H)");
+        writeHeaderValue(beatFile_(), "period [s]", period);
+        writeHeaderValue(beatFile_(), "rho [kg/m3]", rho_);
+        writeHeaderValue(beatFile_(), "upstream [m]", upstream_);
+        writeHeaderValue(beatFile_(), "downstream [m]", downstream_);
+        writeHeaderValue(beatFile_(), "openFraction", fraction);
+        valveBeat::writeHeader(beatFile_());
+        beatFile_().flush();
+    }
+    // the start time's sample, if the solver's fields are there
+    if (mesh_.foundObject<surfaceScalarField>(phiName_))
+    {
+        sampleBeat();
+    }
+}
+
+
+Foam::scalar Foam::functionObjects::valveMetrics::sampledPressure
+(
+    const label celli
+) const
+{
+    const volScalarField& p = lookupObject<volScalarField>(pName_);
+    scalar v = celli >= 0 ? p[celli] : 0;
+    label n = celli >= 0 ? 1 : 0;
+    reduce(v, sumOp<scalar>());
+    reduce(n, sumOp<label>());
+    return v/n;     // a point on a face shared by ranks: their mean
+}
+
+
+void Foam::functionObjects::valveMetrics::sampleBeat()
+{
+    scalar Qin = 0;
+    scalar Qout = 0;
+    scalar dp = 0;
+    flowMetrics(Qin, Qout, dp);
+    const scalar pUp = rho_*sampledPressure(upstreamCell_);
+    const scalar pDown = rho_*sampledPressure(downstreamCell_);
+    beat_->addFlow(time_.value(), Qin, pUp - pDown, pDown, jetVelocity());
+}
+
+
+Foam::scalar Foam::functionObjects::valveMetrics::jetVelocity() const
+{
+    const volVectorField& U = lookupObject<volVectorField>(UName_);
+    scalar vJet = -GREAT;
+    for (const label celli : jetCells_)
+    {
+        vJet = max(vJet, U[celli] & axis_);
+    }
+    return returnReduce(vJet, maxOp<scalar>());
+}
+
+
+void Foam::functionObjects::valveMetrics::finishBeat()
+{
+    valveBeat& b = *beat_;
+    if (Pstream::master())
+    {
+        if (b.complete(1e-9*(b.end() - b.start())))
+        {
+            const valveBeat::metrics m = b.evaluate();
+            Log << type() << ' ' << name() << ": beat " << m.beat << " ("
+                << m.start << " to " << b.end() << " s): stroke volume "
+                << m.strokeVolume*1e6 << " ml, regurgitant fraction "
+                << 100*m.regurgitantFraction << " %, mean gradient "
+                << m.meanGradient/paPerMmHg << " mmHg, EOA " << m.EOA*1e4
+                << " cm2, aortic pressure " << m.aorticMax/paPerMmHg << '/'
+                << m.aorticMin/paPerMmHg << " mmHg" << endl;
+            if (beatFile_.valid())
+            {
+                valveBeat::writeRow(beatFile_(), m, previousBeat_.get());
+                beatFile_().flush();
+            }
+            previousBeat_.reset(new valveBeat::metrics(m));
+        }
+        else
+        {
+            Log << type() << ' ' << name() << ": beat " << b.beat() + 1
+                << " (" << b.start() << " to " << b.end()
+                << " s) not covered from its start by this run: no row"
+                << endl;
+            previousBeat_.clear();
+        }
+    }
+    b.next();
+}
+
+
 bool Foam::functionObjects::valveMetrics::execute()
 {
+    if (!beat_.valid())
+    {
+        return true;
+    }
+    const scalar t = time_.value();
+    const scalar tol = 1e-9*(beat_->end() - beat_->start());
+    while (t > beat_->end() + tol)
+    {
+        finishBeat();
+    }
+    sampleBeat();
+    return true;
+}
+
+
+bool Foam::functionObjects::valveMetrics::end()
+{
+    if
+    (
+        beat_.valid()
+     && time_.value() >= beat_->end() - 1e-9*(beat_->end() - beat_->start())
+    )
+    {
+        finishBeat();
+    }
     return true;
 }
 
@@ -1092,6 +1283,16 @@ bool Foam::functionObjects::valveMetrics::write()
     const scalar vPeak = peakAxialVelocity(x);
     const bool haveRe = vPeak > -GREAT;
     const scalar Re = haveRe ? 2*rho_*vPeak*radius_/mu_ : 0;
+    // with beats: the sampled pressures [Pa] and the jet's velocity
+    scalar pUp = 0;
+    scalar pDown = 0;
+    scalar vJet = 0;
+    if (beat_.valid())
+    {
+        pUp = rho_*sampledPressure(upstreamCell_);
+        pDown = rho_*sampledPressure(downstreamCell_);
+        vJet = jetVelocity();
+    }
 
     if (!Pstream::master())
     {
@@ -1110,6 +1311,10 @@ bool Foam::functionObjects::valveMetrics::write()
     scalar maxVonMises = 0;
     scalar contactForce = 0;
     solidLoads(s, maxPrincipal, maxVonMises, contactForce);
+    if (beat_.valid())
+    {
+        beat_->addValve(time_.value(), GOA, maxPrincipal);
+    }
     const scalar gapL = leafletGap(x);
     const scalar gapW = wallGap(s);
 
@@ -1160,6 +1365,12 @@ bool Foam::functionObjects::valveMetrics::write()
     col(nParts_ > 1 && gapL < GREAT, mm(gapL));
     col(gapW < GREAT, mm(gapW));
     col(true, leak);
+    if (beat_.valid())
+    {
+        col(true, pUp/paPerMmHg);
+        col(true, pDown/paPerMmHg);
+        col(true, vJet);
+    }
     os  << endl;
 
     return true;
