@@ -1057,7 +1057,12 @@ void Foam::functionObjects::valveMetrics::readBeats(const dictionary& dict)
     if (Pstream::master() && writeToFile())
     {
         beatFile_ = createFile("beats");
-        writeHeader(beatFile_(), "Valve metrics per beat (src/fsiCoupling/functionObjects/valveMetrics/valveBeat.H)");
+        writeHeader
+        (
+            beatFile_(),
+            "Valve metrics per beat "
+            "(src/fsiCoupling/functionObjects/valveMetrics/valveBeat.H)"
+        );
         writeHeaderValue(beatFile_(), "period [s]", period);
         writeHeaderValue(beatFile_(), "rho [kg/m3]", rho_);
         writeHeaderValue(beatFile_(), "upstream [m]", upstream_);
