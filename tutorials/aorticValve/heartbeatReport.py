@@ -71,6 +71,10 @@ def series(case):
         names = n
         data.append(d)
     data = np.vstack(data)
+    if data.ndim != 2 or data.shape[0] == 0 or data.shape[1] == 0:
+        sys.exit('heartbeatReport: ' + ', '.join(files) + ' hold no rows:'
+                 ' the run ended before the first row (writeInterval of'
+                 ' system/valveMetrics.run); run longer')
     data = data[np.argsort(data[:, 0], kind='stable')]
     keep = np.append(np.diff(data[:, 0]) > 0, True)     # restarts overlap
     return {name: data[keep, i] for i, name in enumerate(names)}
