@@ -744,7 +744,8 @@ bool Foam::immersedSolids::deformable::stiffnessAction
             (
                 stiffnessF_[3*i], stiffnessF_[3*i + 1], stiffnessF_[3*i + 2]
             );
-            const smoothedSolid::Vec3 k = ((f0 - fp[i])/eps).cwiseProduct(free[i]);
+            const smoothedSolid::Vec3 k =
+                ((f0 - fp[i])/eps).cwiseProduct(free[i]);
             dF[i] = vector(k(0), k(1), k(2));
         }
     }
