@@ -104,8 +104,14 @@ void Foam::windkesselFvPatchScalarField::startStep
         s_.Q0 = Q;
         s_.Q0Known = true;
     }
-    const Time& runTime = db().time();
     s_.timeIndex = timeIndex;
+    setStepLength();
+}
+
+
+void Foam::windkesselFvPatchScalarField::setStepLength()
+{
+    const Time& runTime = db().time();
     s_.dt = runTime.deltaTValue();
     s_.pd0 = par_.pDistal->value(runTime.value() - s_.dt);
     s_.pd1 = par_.pDistal->value(runTime.value());
@@ -334,6 +340,12 @@ void Foam::windkesselFvPatchScalarField::updateCoeffs()
         if (timeIndex != s_.timeIndex)
         {
             startStep(timeIndex, Q);
+        }
+        else if (db().time().deltaTValue() != s_.dt)
+        {
+            // the step again from its start at another length (a coupling
+            // refused it): the same start state, the new step's length
+            setStepLength();
         }
         // a new iterate needs the flux of a new solve (or none yet)
         const label event =

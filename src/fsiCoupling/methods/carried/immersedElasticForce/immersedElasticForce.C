@@ -316,10 +316,11 @@ bool Foam::fv::immersedElasticForce::implicitTethers() const
 }
 
 
-void Foam::fv::immersedElasticForce::spreadForce
+bool Foam::fv::immersedElasticForce::spreadForce
 (
     const vectorField& v,
-    const bool advanceDrift
+    const bool advanceDrift,
+    string& why
 )
 {
     const scalar dt = mesh_.time().deltaTValue();
@@ -341,15 +342,9 @@ void Foam::fv::immersedElasticForce::spreadForce
         // from growing)
         solid_->setStiffnessDamping(beta);
     }
-    string why;
     if (!solid_->interactionForce(dt, F, why))
     {
-        FatalErrorInFunction
-            << "fvOption " << name_ << ": the immersed solid failed at time "
-            << mesh_.time().timeName() << ": " << why.c_str()
-            << "; the last written time is kept. Reduce maxDeltaT in"
-            << " system/controlDict (the leaflets' stiffness limits the"
-            << " step of this coupling)" << exit(FatalError);
+        return false;
     }
     solidTime_ += clock.timeIncrement();
 
@@ -437,6 +432,18 @@ void Foam::fv::immersedElasticForce::spreadForce
     reduce(total, sumOp<vector>());
     wallForce_ = total - fluidForce_;
     forceTime_ += clock.timeIncrement();
+    return true;
+}
+
+
+void Foam::fv::immersedElasticForce::failed(const string& why) const
+{
+    FatalErrorInFunction
+        << "fvOption " << name_ << ": the immersed solid failed at time "
+        << mesh_.time().timeName() << ": " << why.c_str()
+        << "; the last written time is kept. Reduce maxDeltaT in"
+        << " system/controlDict (the leaflets' stiffness limits the"
+        << " step of this coupling)" << exit(FatalError);
 }
 
 
@@ -498,6 +505,8 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     baseDamping_(0),
     stepDamping_(0),
     refusals_(0),
+    stepRetries_(0),
+    retries_(0),
     updateIndex_(mesh.time().timeIndex()),
     probes_(solidPtr_()),
     solidTime_(0),
@@ -535,7 +544,11 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     setTetherMobility();
     // the force of the start time: on a restart with the tethers' state,
     // as the interrupted run had it for this step
-    spreadForce(lastVelocity_, false);
+    string why;
+    if (!spreadForce(lastVelocity_, false, why))
+    {
+        failed(why);
+    }
 
     report();
     if
@@ -931,6 +944,34 @@ bool Foam::fv::immersedElasticForce::refuseStep(const vectorField& v)
 }
 
 
+void Foam::fv::immersedElasticForce::repeatShorter
+(
+    const vectorField& vLast,
+    const string& why
+)
+{
+    Time& runTime = const_cast<Time&>(mesh_.time());
+    const scalar dt = runTime.deltaTValue();
+    const scalar t0 = runTime.value() - dt;
+    solid_->restoreState();
+    lastVelocity_ = vLast;
+    ++retries_;
+    runTime.setDeltaT(0.5*dt, false);
+    runTime.setTime(t0 + 0.5*dt, runTime.timeIndex());
+    updateStencils();
+    // the look-ahead force of the step's start at the shorter step
+    string whyStart;
+    if (!spreadForce(lastVelocity_, false, whyStart))
+    {
+        failed(whyStart);
+    }
+    Info<< type() << ' ' << name_ << ": step refused (" << why.c_str()
+        << "): repeated from " << t0 << " s with deltaT " << 0.5*dt
+        << " s (" << retries_ << " of at most " << stepRetries_
+        << " halvings)" << endl;
+}
+
+
 Foam::scalar Foam::fv::immersedElasticForce::maxDeltaT(const scalar) const
 {
     return
@@ -973,29 +1014,49 @@ bool Foam::fv::immersedElasticForce::updateForce()
         return false;
     }
     refusals_ = 0;
-    updateIndex_ = runTime.timeIndex();
     if (implicitForce_.valid())
     {
         correctImplicit(v);
         clock.timeIncrement();  // counted in implicitTime_, not the solid's
     }
+    // a step whose end inverts an element is repeated, shorter, from its
+    // start (the solid's state kept for it)
+    const bool retry =
+        retries_ < stepRetries_
+     && runTime.controlDict().getOrDefault("adjustTimeStep", false);
+    if (retry)
+    {
+        solid_->storeState();
+    }
     string why;
     if (!solid_->tryMoveWith(v, dt, why))
     {
-        FatalErrorInFunction
-            << "fvOption " << name_ << ": the immersed solid failed at time "
-            << runTime.timeName() << ": " << why.c_str()
-            << "; the last written time is kept. Reduce maxDeltaT in"
-            << " system/controlDict (the leaflets' stiffness limits the"
-            << " step of this coupling)" << exit(FatalError);
+        failed(why);
     }
     solidTime_ += clock.timeIncrement();
 
     updateStencils();
     searchTime_ += clock.timeIncrement();
 
+    const vectorField vLast(retry ? lastVelocity_ : vectorField());
     lastVelocity_ = v;
-    spreadForce(v, true);   // adds to solidTime_ and forceTime_
+    if (!spreadForce(v, true, why))   // adds to solidTime_ and forceTime_
+    {
+        if (!retry)
+        {
+            failed
+            (
+                retries_
+              ? why + " (the step repeated " + Foam::name(retries_)
+              + " times at half its length)"
+              : why
+            );
+        }
+        repeatShorter(vLast, why);
+        return false;
+    }
+    retries_ = 0;
+    updateIndex_ = runTime.timeIndex();
 
     if (estimateStep_ && stableStep_.due())
     {
@@ -1154,6 +1215,14 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
                 << " step is the flow's: adjustTimeStep and maxCo in"
                 << " system/controlDict)" << exit(FatalIOError);
         }
+    }
+    stepRetries_ = coeffs_.getOrDefault<label>("stepRetries", 0);
+    if (stepRetries_ < 0 || stepRetries_ > 20)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": stepRetries " << stepRetries_
+            << " must be in [0, 20] (the halvings of a step whose end"
+            << " inverts an element; 0: stop at once)" << exit(FatalIOError);
     }
     stepDamping_ = coeffs_.getOrDefault<scalar>("stepDamping", 0);
     if (stepDamping_ < 0 || stepDamping_ > 1)
