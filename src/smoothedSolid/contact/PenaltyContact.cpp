@@ -203,8 +203,6 @@ void PenaltyContact::addRigidSurface(RigidSurface surface)
     for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) rigidTri_.push_back({sId, t});
     rigid_.push_back(std::move(surface));
     built_ = false;
-    rigidCells_.clear();
-    rigidCellInverse_ = 0;
 }
 
 void PenaltyContact::setStillNodes(std::vector<char> still)
@@ -412,76 +410,6 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
         }
     }
     return maxPenetration;
-}
-
-int PenaltyContact::rigidCorrections(const TetMesh& mesh_, const std::vector<Vec3>& x,
-                                     std::vector<Vec3>& d) const
-{
-    d.assign(mesh_.nNodes(), Vec3::Zero());
-    if (rigidTri_.empty()) return 0;
-    // the grid of the rigid triangles, padded by the reach (once)
-    auto cellOf = [this](const Vec3& p) {
-        return std::array<long, 3>{long(std::floor(p.x() * rigidCellInverse_)),
-                                   long(std::floor(p.y() * rigidCellInverse_)),
-                                   long(std::floor(p.z() * rigidCellInverse_))};
-    };
-    auto key = [](long i, long j, long k) {
-        return (std::uint64_t(i) * 73856093u) ^ (std::uint64_t(j) * 19349663u) ^
-               (std::uint64_t(k) * 83492791u);
-    };
-    const int nRigid = static_cast<int>(rigidTri_.size());
-    if (rigidCellInverse_ == 0) {
-        double edge = 0;
-        for (int i = 0; i < nRigid; ++i) {
-            Vec3 a, b, c;
-            triangle(mesh_, x, -1 - i, a, b, c);
-            edge += ((b - a).norm() + (c - b).norm() + (a - c).norm()) / 3.0;
-        }
-        rigidReach_ = std::max(edge / nRigid, depth_ + skin_);
-        rigidCellInverse_ = 1.0 / (2.0 * rigidReach_);
-        for (int i = 0; i < nRigid; ++i) {
-            Vec3 a, b, c;
-            triangle(mesh_, x, -1 - i, a, b, c);
-            const Vec3 pad = Vec3::Constant(rigidReach_);
-            const auto lo = cellOf(a.cwiseMin(b).cwiseMin(c) - pad);
-            const auto hi = cellOf(a.cwiseMax(b).cwiseMax(c) + pad);
-            for (long u = lo[0]; u <= hi[0]; ++u)
-                for (long v = lo[1]; v <= hi[1]; ++v)
-                    for (long w = lo[2]; w <= hi[2]; ++w) rigidCells_[key(u, v, w)].push_back(-1 - i);
-        }
-    }
-    int moved = 0;
-    for (const int p : slaveNodes_) {
-        if (!still_.empty() && still_[p]) continue;
-        const auto c = cellOf(x[p]);
-        const auto it = rigidCells_.find(key(c[0], c[1], c[2]));
-        if (it == rigidCells_.end()) continue;
-        Vec3 nodeNormal = Vec3::Zero();
-        for (int i = nodeFaceStart_[p]; i < nodeFaceStart_[p + 1]; ++i) {
-            const Tri& t = mesh_.faces()[mesh_.boundaryFaces()[nodeFaces_[i]]].nodes;
-            nodeNormal += (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
-        }
-        nodeNormal.normalize();
-        // the closest facing rigid triangle within the reach
-        Proximity best{rigidReach_, 0, 0, Vec3::Zero(), {0, 0, 0}};
-        Vec3 q = x[p];
-        for (const int id : it->second) {
-            Vec3 a, b, cc;
-            triangle(mesh_, x, id, a, b, cc);
-            Proximity r;
-            if (!proximity(x[p], a, b, cc, r)) continue;
-            if (nodeNormal.dot(r.normal) > -options_.facingCosine) continue;
-            if (r.distance < best.distance) {
-                best = r;
-                q = r.w[0] * a + r.w[1] * b + r.w[2] * cc;
-            }
-        }
-        if (best.gap < 0) {
-            d[p] = q - x[p];
-            ++moved;
-        }
-    }
-    return moved;
 }
 
 // ---------------------------------------------------------------------------

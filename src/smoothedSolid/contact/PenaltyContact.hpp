@@ -49,11 +49,9 @@
 #include "mesh/TetMesh.hpp"
 
 #include <array>
-#include <cstdint>
 #include <istream>
 #include <memory>
 #include <ostream>
-#include <unordered_map>
 #include <vector>
 
 namespace smoothedSolid {
@@ -73,9 +71,6 @@ struct ContactOptions {
     double facingCosine = 0.2;  // contact only if n_node . n_triangle < -facingCosine, [0, 1)
     double dampingRatio = 0.1;  // normal dashpot, fraction of critical, [0, 1]
     double stepFraction = 0.5;  // stable step with contact / without (paper: halved), (0, 1)
-    // A solid carried by a fluid (ExplicitSolid::moveWith): each node the
-    // motion took behind a rigid surface is put back on it (below)
-    bool rigidProjection = false;
 };
 
 class PenaltyContact {
@@ -110,26 +105,6 @@ public:
                      const std::vector<Vec3>& velocity, double dt,
                      const std::vector<double>& omega2, std::vector<Vec3>& f,
                      std::vector<double>& pressure) const;
-
-    // Rigid projection (options().rigidProjection): for coordinates x, the
-    // displacement d_p = q - p that puts each boundary node p lying behind
-    // a rigid surface (gap g < 0 to the closest facing rigid triangle, as
-    // addForces() pairs them, here within the projection's reach: the
-    // rigid triangles' mean edge, at least the search depth plus skin, so
-    // that a node the fluid moved deeper than the contact search in one
-    // step is still found; nodes held still excluded) on that triangle's
-    // closest point q; zero elsewhere.
-    // A carried solid moves with the fluid's velocity, and where the
-    // fluid's cells are coarser than the gap (two leaflets, or a leaflet
-    // and the wall, in one cell) nothing in that velocity keeps a node off
-    // the wall, while at the fluid's step the springs get almost no
-    // stiffness (their budget is set by the node's own mass): a kinematic
-    // contact constraint instead (the nodes' positions projected onto the
-    // admissible set after the unconstrained motion; Wriggers,
-    // Computational Contact Mechanics, 2nd ed. 2006, Sect. 6.3 and 10.3).
-    // Returns the number of nodes moved.
-    int rigidCorrections(const TetMesh& mesh, const std::vector<Vec3>& x,
-                         std::vector<Vec3>& d) const;
 
     // The candidate search for coordinates x (addForces makes it too): the
     // lists are rebuilt only once a boundary node has moved by skin/2
@@ -168,12 +143,6 @@ private:
     std::vector<RigidSurface> rigid_;
     std::vector<std::array<int, 2>> rigidTri_;  // (surface, triangle) for id -1 - i
     double depth_ = 0;
-
-    // The rigid triangles (which do not move) by grid cell, for the
-    // projection: built at its first call after a surface is added
-    mutable std::unordered_map<std::uint64_t, std::vector<int>> rigidCells_;
-    mutable double rigidCellInverse_ = 0;
-    mutable double rigidReach_ = 0;
     static constexpr double safety_ = 0.9;
 
     struct Pair {

@@ -639,24 +639,6 @@ void ExplicitSolid::moveWith(const std::vector<Vec3>& v, double dt)
     }
     applyConstraints(dt);
     for (int i = 0; i < nn; ++i) u_[i] += dt * vHalf_[i];
-    projectedNodes_ = 0;
-    maxProjection_ = 0;
-    if (contact_ && contact_->options().rigidProjection) {
-        const auto& X = mesh_->coordinates();
-        for (int i = 0; i < nn; ++i) x_[i] = X[i] + u_[i];
-        std::vector<Vec3> d;
-        projectedNodes_ = contact_->rigidCorrections(*mesh_, x_, d);
-        for (int i = 0; projectedNodes_ > 0 && i < nn; ++i) {
-            const double m = d[i].norm();
-            if (m == 0) continue;
-            const Vec3 n = d[i] / m;  // out of the surface
-            const Vec3 di = d[i].cwiseProduct(free[i]);
-            u_[i] += di;
-            const double vn = vHalf_[i].dot(n);
-            if (vn < 0) vHalf_[i] -= (vn * n).cwiseProduct(free[i]);
-            maxProjection_ = std::max(maxProjection_, di.norm());
-        }
-    }
     t_ += dt;
     dtLast_ = dt;
     ++nSteps_;

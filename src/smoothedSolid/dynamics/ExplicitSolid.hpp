@@ -112,13 +112,8 @@ public:
     // a wrong size or a non-finite velocity (the state unchanged). An
     // element the motion inverts is reported by the next force evaluation
     // (interactionForce()), which names it: the motion does not evaluate
-    // the stress a second time. With contact's rigidProjection, each free
-    // node the motion took behind a rigid surface is then put back on it
-    // (PenaltyContact::rigidCorrections; its velocity's component into the
-    // surface removed): projectedNodes() and maxProjection() report it.
+    // the stress a second time.
     void moveWith(const std::vector<Vec3>& v, double dt);
-    int projectedNodes() const { return projectedNodes_; }
-    double maxProjection() const { return maxProjection_; }
 
     // --- fibre directions (fibre-reinforced materials) --------------------
     // One direction per element in the reference configuration (normalised
@@ -279,8 +274,6 @@ private:
     std::vector<Constraint> constraints_;
     std::vector<Pressure> pressures_;
     std::unique_ptr<PenaltyContact> contact_;
-    int projectedNodes_ = 0;       // moveWith()'s rigid projection
-    double maxProjection_ = 0;
     std::vector<double> contactPressure_;
     double maxPenetration_ = 0;
     Vec3 bodyForce_ = Vec3::Zero();

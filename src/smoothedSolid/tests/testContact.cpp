@@ -274,64 +274,6 @@ TEST(Contact, NodesHeldStillHaveNoRigidPairs)
     EXPECT_GT(slides.uy, 0.0);
 }
 
-// A solid carried by a fluid (moveWith) into a rigid plane: with
-// rigidProjection every node the motion takes behind the plane is put back
-// on it, its velocity into the plane removed, the others moved as given;
-// without it (negative control) the bottom goes through the plane.
-TEST(Contact, CarriedNodesProjectedOutOfRigidSurface)
-{
-    struct Result {
-        double minY = 1e300, maxVyBottom = -1e300, topY = 0, maxProjection = 0;
-        int projected = 0;
-    };
-    auto run = [](bool projection) {
-        // a cube of 0.1 m, its bottom 5 mm above the plane y = 0, moved
-        // down at 1 m/s (bottom) to 0.5 m/s (top) for 20 steps of 1 ms: the
-        // bottom would end 15 mm below the plane, the top at 95 mm
-        TetMesh mesh = TetMesh::box(4, 4, 4, [](const Vec3& s) {
-            return Vec3(0.1 * s.x(), 0.005 + 0.1 * s.y(), 0.1 * s.z());
-        });
-        ExplicitSolid solid(std::move(mesh), std::make_shared<NeoHookean>(1e5, 5e5, 1000.0),
-                            {Formulation::Selective, 0.8, 0.0});
-        ContactOptions options;
-        options.rigidProjection = projection;
-        solid.enableContact(options);
-        solid.addRigidSurface({{Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(1, 0, 1), Vec3(-1, 0, 1)},
-                               {{0, 2, 1}, {0, 3, 2}}});
-        const auto& X = solid.mesh().coordinates();
-        std::vector<Vec3> v(X.size());
-        for (std::size_t i = 0; i < X.size(); ++i) {
-            v[i] = Vec3(0, -1.0 + 5.0 * (X[i].y() - 0.005), 0);
-        }
-        Result r;
-        for (int k = 0; k < 20; ++k) {
-            solid.moveWith(v, 1e-3);
-            r.projected = std::max(r.projected, solid.projectedNodes());
-            r.maxProjection = std::max(r.maxProjection, solid.maxProjection());
-        }
-        for (std::size_t i = 0; i < X.size(); ++i) {
-            const double y = X[i].y() + solid.displacement()[i].y();
-            r.minY = std::min(r.minY, y);
-            if (X[i].y() < 0.006) r.maxVyBottom = std::max(r.maxVyBottom, solid.velocity()[i].y());
-            if (X[i].y() > 0.1045) r.topY = y;
-        }
-        return r;
-    };
-    const Result with = run(true);
-    const Result without = run(false);
-    std::printf("carried into a rigid plane, with projection: lowest node at y = %.3g m "
-                "(expected 0 within 1e-12), bottom's velocity %.3g m/s (0), top at %.6f m "
-                "(0.095), up to %d nodes put back a step, by at most %.3g m\n",
-                with.minY, with.maxVyBottom, with.topY, with.projected, with.maxProjection);
-    std::printf("without projection: lowest node at y = %.3g m (expected -0.015)\n", without.minY);
-    EXPECT_NEAR(with.minY, 0.0, 1e-12);
-    EXPECT_NEAR(with.maxVyBottom, 0.0, 1e-12);
-    EXPECT_NEAR(with.topY, 0.095, 1e-12);
-    EXPECT_EQ(with.projected, 25);     // the bottom's 5 x 5 nodes
-    EXPECT_NEAR(without.minY, -0.015, 1e-12);
-    EXPECT_NEAR(without.topY, 0.095, 1e-12);
-}
-
 TEST(Contact, CubeDroppedOnRigidPlane)
 {
     const ContactOptions options;  // production settings

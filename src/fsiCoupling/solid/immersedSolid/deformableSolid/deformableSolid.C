@@ -382,19 +382,13 @@ void Foam::immersedSolids::deformable::readLoadsAndContact()
         const dictionary& c = dict_.subDict("contact");
         checkKeys
         (
-            c,
-            {
-                "self", "dampingRatio", "stepFraction", "penaltyScale",
-                "rigidProjection"
-            }
+            c, {"self", "dampingRatio", "stepFraction", "penaltyScale"}
         );
         smoothedSolid::ContactOptions co;
         co.selfContact = c.getOrDefault<Switch>("self", false);
         co.dampingRatio = c.getOrDefault<scalar>("dampingRatio", co.dampingRatio);
         co.stepFraction = c.getOrDefault<scalar>("stepFraction", co.stepFraction);
         co.penaltyScale = c.getOrDefault<scalar>("penaltyScale", co.penaltyScale);
-        co.rigidProjection =
-            c.getOrDefault<Switch>("rigidProjection", co.rigidProjection);
         guarded(dict_, "contact", [&] { s.enableContact(co); });
     }
     if (dict_.found("contactSurfaces"))
@@ -779,13 +773,6 @@ bool Foam::immersedSolids::deformable::tryMoveWith
     try
     {
         solid_->moveWith(d, dt);
-        if (solid_->projectedNodes())
-        {
-            Info<< "deformable solid: "
-                << solid_->projectedNodes()
-                << " nodes put back on the contact surfaces (largest "
-                << 1e3*solid_->maxProjection() << " mm)" << endl;
-        }
     }
     catch (const smoothedSolid::Error& err)
     {
