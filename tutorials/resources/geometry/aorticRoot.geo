@@ -70,7 +70,10 @@ Mesh.MeshSizeMin = fluidSize;
 Mesh.MeshSizeMax = fluidSize;
 Mesh.MeshSizeFromCurvature = 0;
 Mesh.Algorithm = 6;        // Frontal-Delaunay surfaces
-Mesh.Algorithm3D = 10;     // HXT
+// 10: HXT (fewer slivers; its mesh differs from call to call), 1: Delaunay
+// (the same mesh on every call: -setnumber fluidAlgorithm3D 1)
+If (!Exists(fluidAlgorithm3D)) fluidAlgorithm3D = 10; EndIf
+Mesh.Algorithm3D = fluidAlgorithm3D;
 Mesh.Optimize = 1;
 Mesh.ScalingFactor = 1e-3; // mm -> m
 Mesh.MshFileVersion = 2.2; // the format gmshToFoam reads

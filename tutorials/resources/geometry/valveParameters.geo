@@ -33,6 +33,9 @@
 //   L_in   length of the inlet (ventricular) extension, radius r_b
 //   L_out  length of the outlet (aortic) extension above h_s, radius r_c
 //   fluidSize    tetrahedron size of the fluid domain
+//   fluidAlgorithm3D  gmsh's 3D mesher for it (aorticRoot.geo): 10 HXT
+//                (default; its mesh differs from call to call), 1 Delaunay
+//                (the same mesh on every call)
 //   leafletSize  triangle size of the leaflets' mid-surfaces
 //   wallSize     triangle size of the rigid contact surface (root wall)
 
