@@ -305,6 +305,124 @@ void PenaltyContact::buildCandidates(const TetMesh& mesh, const std::vector<Vec3
     }
 }
 
+bool PenaltyContact::nearest(const TetMesh& mesh, const std::vector<Vec3>& x, int s,
+                             Nearest& best, bool facingRigid) const
+{
+    if (candStart_[s] == candStart_[s + 1]) return false;
+    const int p = slaveNodes_[s];
+    // Outward normal of the node (area-weighted): a node only contacts
+    // triangles facing it, so that a node on an edge of another body's
+    // face (e.g. where two plates meet at a side) is not pushed sideways
+    // by that body's side faces
+    Vec3 nodeNormal = Vec3::Zero();
+    for (int i = nodeFaceStart_[p]; i < nodeFaceStart_[p + 1]; ++i) {
+        const Tri& t = mesh.faces()[mesh.boundaryFaces()[nodeFaces_[i]]].nodes;
+        nodeNormal += (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+    }
+    nodeNormal.normalize();
+    // Closest facing triangle (distance to its closest point), the gap
+    // measured along its normal
+    Proximity bestP{depth_, 0, 0, Vec3::Zero(), {0, 0, 0}};
+    int bestId = 0;
+    for (int i = candStart_[s]; i < candStart_[s + 1]; ++i) {
+        const int id = cand_[i];
+        Vec3 a, b, c;
+        triangle(mesh, x, id, a, b, c);
+        Proximity r;
+        if (!proximity(x[p], a, b, c, r)) continue;
+        if ((id >= 0 || facingRigid) && nodeNormal.dot(r.normal) > -options_.facingCosine) {
+            continue;
+        }
+        if (r.distance < bestP.distance) {
+            bestP = r;
+            bestId = id;
+        }
+    }
+    best = {bestId, bestP.gap, bestP.lateral, bestP.normal, {bestP.w[0], bestP.w[1], bestP.w[2]}};
+    return bestP.distance < depth_;
+}
+
+KinematicContact PenaltyContact::constrainVelocities(const TetMesh& mesh,
+                                                     const std::vector<Vec3>& x,
+                                                     std::vector<Vec3>& v,
+                                                     const std::vector<double>& invMass,
+                                                     double dt, int sweeps) const
+{
+    const int nn = mesh.nNodes();
+    if (static_cast<int>(v.size()) != nn || static_cast<int>(invMass.size()) != nn) {
+        throw Error("PenaltyContact::constrainVelocities: " + std::to_string(v.size()) +
+                    " velocities and " + std::to_string(invMass.size()) + " inverse masses for " +
+                    std::to_string(nn) + " nodes");
+    }
+    if (!(dt > 0) || !std::isfinite(dt)) {
+        throw Error("PenaltyContact::constrainVelocities: the step must be positive and finite, "
+                    "not " + std::to_string(dt));
+    }
+    KinematicContact report;
+    if (!(options_.betweenParts || options_.selfContact) && rigidTri_.empty()) return report;
+    search(mesh, x);
+
+    struct Constraint {
+        int n;          // nodes: p, then T's (none on a rigid surface)
+        int node[4];
+        double b[4];    // +1 for p, -w_j for T's nodes
+        Vec3 normal;
+        double target;  // smallest admissible v_n
+        double k;       // 1 / (sum_j b_j^2 invMass_j): v_n per unit impulse, inverted
+        double lambda;  // accumulated impulse
+    };
+    std::vector<Constraint> cs;
+    const int ns = static_cast<int>(slaveNodes_.size());
+    double vScale = 0;
+    for (const Vec3& vi : v) vScale = std::max(vScale, vi.norm());
+    report.minGap = depth_;
+    for (int s = 0; s < ns; ++s) {
+        Nearest r;
+        if (!nearest(mesh, x, s, r, false) || r.lateral >= depth_) continue;
+        ++report.pairs;
+        report.minGap = std::min(report.minGap, r.gap);
+        Constraint c{1, {slaveNodes_[s], 0, 0, 0}, {1, 0, 0, 0}, r.normal,
+                     r.gap >= 0 ? -r.gap / dt : -0.5 * r.gap / dt, 0, 0};
+        if (r.id >= 0) {
+            const Tri& t = mesh.faces()[mesh.boundaryFaces()[r.id]].nodes;
+            for (int j = 0; j < 3; ++j) c.node[j + 1] = t[j], c.b[j + 1] = -r.w[j];
+            c.n = 4;
+        }
+        double sum = 0;
+        for (int j = 0; j < c.n; ++j) sum += c.b[j] * c.b[j] * invMass[c.node[j]];
+        if (!(sum > 0)) continue;  // neither side may move
+        c.k = 1.0 / sum;
+        cs.push_back(c);
+    }
+    if (report.pairs == 0) report.minGap = 0;
+    const double tolerance = 1e-9 + 1e-3 * vScale;
+    std::vector<Vec3> v0;
+    while (report.sweeps < sweeps) {
+        ++report.sweeps;
+        double worst = 0;
+        for (Constraint& c : cs) {
+            double vn = 0;
+            for (int j = 0; j < c.n; ++j) vn += c.b[j] * v[c.node[j]].dot(c.normal);
+            // projected: the accumulated impulse stays >= 0
+            const double lambda = std::max(0.0, c.lambda + (c.target - vn) * c.k);
+            const double d = lambda - c.lambda;
+            if (d == 0) continue;
+            worst = std::max(worst, std::abs(d) / c.k);
+            if (v0.empty()) v0 = v;
+            c.lambda = lambda;
+            for (int j = 0; j < c.n; ++j) {
+                v[c.node[j]] += (d * c.b[j] * invMass[c.node[j]]) * c.normal;
+            }
+        }
+        if (worst <= tolerance) break;
+    }
+    for (const Constraint& c : cs) report.held += c.lambda > 0;
+    for (std::size_t i = 0; !v0.empty() && i < v.size(); ++i) {
+        report.maxChange = std::max(report.maxChange, (v[i] - v0[i]).norm());
+    }
+    return report;
+}
+
 double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& x,
                                  const std::vector<Vec3>& velocity, double dt,
                                  const std::vector<double>& omega2, std::vector<Vec3>& f,
@@ -318,43 +436,18 @@ double PenaltyContact::addForces(const TetMesh& mesh_, const std::vector<Vec3>& 
 
     pairs_.clear();
     for (int s = 0; s < ns; ++s) {
-        if (candStart_[s] == candStart_[s + 1]) continue;
-        const int p = slaveNodes_[s];
-        // Outward normal of the node (area-weighted): a node only contacts
-        // triangles facing it, so that a node on an edge of another body's
-        // face (e.g. where two plates meet at a side) is not pushed sideways
-        // by that body's side faces
-        Vec3 nodeNormal = Vec3::Zero();
-        for (int i = nodeFaceStart_[p]; i < nodeFaceStart_[p + 1]; ++i) {
-            const Tri& t = mesh_.faces()[mesh_.boundaryFaces()[nodeFaces_[i]]].nodes;
-            nodeNormal += (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
-        }
-        nodeNormal.normalize();
-        // Closest facing triangle (distance to its closest point). The gap
-        // is measured along its normal, and the force fades out linearly
-        // with the lateral offset over the search depth: continuous where
-        // the node slides over an edge of the other surface, whether that
-        // edge is a crease (a pressed plate makes a bowl, whose creases a
-        // penetrating node can lie beyond) or the body's edge, and a node
-        // exactly above an edge or vertex (matching meshes) is held.
-        Proximity bestP{depth_, 0, 0, Vec3::Zero(), {0, 0, 0}};
-        int bestId = 0;
-        for (int i = candStart_[s]; i < candStart_[s + 1]; ++i) {
-            const int id = cand_[i];
-            Vec3 a, b, c;
-            triangle(mesh_, x, id, a, b, c);
-            Proximity r;
-            if (!proximity(x[p], a, b, c, r)) continue;
-            if (nodeNormal.dot(r.normal) > -options_.facingCosine) continue;
-            if (r.distance < bestP.distance) {
-                bestP = r;
-                bestId = id;
-            }
-        }
-        const double fade = 1.0 - bestP.lateral / depth_;
-        if (bestP.gap < 0 && fade > 0) {
-            pairs_.push_back({p, bestId, k_[p] * fade, bestP.gap, bestP.normal,
-                              {bestP.w[0], bestP.w[1], bestP.w[2]}});
+        Nearest r;
+        if (!nearest(mesh_, x, s, r, true)) continue;
+        // the force fades out linearly with the lateral offset over the
+        // search depth: continuous where the node slides over an edge of
+        // the other surface, whether that edge is a crease (a pressed plate
+        // makes a bowl, whose creases a penetrating node can lie beyond) or
+        // the body's edge, and a node exactly above an edge or vertex
+        // (matching meshes) is held
+        const double fade = 1.0 - r.lateral / depth_;
+        if (r.gap < 0 && fade > 0) {
+            pairs_.push_back({slaveNodes_[s], r.id, k_[slaveNodes_[s]] * fade, r.gap, r.normal,
+                              {r.w[0], r.w[1], r.w[2]}});
         }
     }
 

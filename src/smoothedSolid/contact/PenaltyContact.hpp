@@ -71,6 +71,19 @@ struct ContactOptions {
     double facingCosine = 0.2;  // contact only if n_node . n_triangle < -facingCosine, [0, 1)
     double dampingRatio = 0.1;  // normal dashpot, fraction of critical, [0, 1]
     double stepFraction = 0.5;  // stable step with contact / without (paper: halved), (0, 1)
+    // A solid carried by a fluid (ExplicitSolid::constrainCarriedVelocity):
+    // the pairs limit the nodes' velocities instead of acting by springs
+    // (PenaltyContact::constrainVelocities)
+    bool kinematic = false;
+};
+
+// What PenaltyContact::constrainVelocities did
+struct KinematicContact {
+    int pairs = 0;           // pairs within the search depth
+    int held = 0;            // of them, constrained at the end
+    int sweeps = 0;          // Gauss-Seidel sweeps
+    double maxChange = 0;    // largest change of a node's velocity
+    double minGap = 0;       // smallest gap of the pairs (before the step)
 };
 
 class PenaltyContact {
@@ -105,6 +118,39 @@ public:
                      const std::vector<Vec3>& velocity, double dt,
                      const std::vector<double>& omega2, std::vector<Vec3>& f,
                      std::vector<double>& pressure) const;
+
+    // Kinematic contact (options().kinematic) for a solid that moves with
+    // velocities it is given (a solid carried by a fluid): at the carrying
+    // fluid's step the springs get almost no stiffness (their budget is set
+    // by the nodes' own mass), and two leaflets in one fluid cell, or a
+    // leaflet by a wall, move with one interpolated velocity in which
+    // nothing keeps them apart. Each pair (boundary node p and its closest
+    // facing triangle T within the search depth, found as addForces()
+    // finds them, at any gap g below the depth, but a rigid triangle need
+    // not face the node: a leaflet's edge reaches the wall edge on; nodes
+    // held still have no rigid pairs) is a unilateral constraint on the relative normal
+    // velocity v_n = n.(v_p - sum_j w_j v_j) (w: the barycentric weights of
+    // p's closest point on T, n: T's unit normal):
+    //     v_n >= -g/dt        (g >= 0: the step closes at most the gap),
+    //     v_n >= -g/(2 dt)    (g < 0: half the depth recovered per step),
+    // met by impulses along n, +lambda on p and -lambda w_j on T's nodes
+    // (none on a rigid surface), lambda >= 0 accumulated per pair by
+    // projected Gauss-Seidel sweeps over the pairs (sequential impulses:
+    // Moreau, Unilateral contact and dry friction in finite freedom
+    // dynamics, CISM Courses 302, 1988; Jean, Comput Methods Appl Mech Eng
+    // 177:235, 1999): the impulses are equal and opposite, so the solid's
+    // momentum is kept, and a pair only pushes. invMass: per node, the
+    // inverse of its mass, 0 where the node may not change (held). At most
+    // 'sweeps' sweeps, until no constraint is violated by more than
+    // 1e-9 m/s plus 1e-3 of the largest velocity (where the two sides'
+    // pairs, node to triangle both ways, are nearly redundant, as where two
+    // surfaces lie on each other, the sweeps converge slowly: a step then
+    // leaves a gap's error of at most that velocity times dt). v is
+    // corrected in place.
+    KinematicContact constrainVelocities(const TetMesh& mesh, const std::vector<Vec3>& x,
+                                         std::vector<Vec3>& v,
+                                         const std::vector<double>& invMass, double dt,
+                                         int sweeps = 100) const;
 
     // The candidate search for coordinates x (addForces makes it too): the
     // lists are rebuilt only once a boundary node has moved by skin/2
@@ -153,6 +199,21 @@ private:
     };
     mutable std::vector<Pair> pairs_;
     mutable std::vector<double> load_;  // zero between calls
+
+    // Slave node s's closest facing candidate triangle within the search
+    // depth (false: none): its id, the gap along its unit normal, the
+    // lateral offset beyond its edges and the closest point's weights.
+    // facingRigid false: a rigid triangle need not face the node (a rigid
+    // surface has one side, its normal's: a thin body's edge, whose nodes'
+    // normals lie along the wall, reaches it edge on)
+    struct Nearest {
+        int id;
+        double gap, lateral;
+        Vec3 normal;
+        double w[3];
+    };
+    bool nearest(const TetMesh& mesh, const std::vector<Vec3>& x, int s, Nearest& r,
+                 bool facingRigid) const;
 
     // Verlet candidate lists: per slave node (CSR over slaveNodes_)
     void buildCandidates(const TetMesh& mesh, const std::vector<Vec3>& x) const;

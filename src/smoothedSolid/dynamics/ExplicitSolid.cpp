@@ -644,6 +644,22 @@ void ExplicitSolid::moveWith(const std::vector<Vec3>& v, double dt)
     ++nSteps_;
 }
 
+KinematicContact ExplicitSolid::constrainCarriedVelocity(std::vector<Vec3>& v, double dt) const
+{
+    if (!contact_ || !contact_->options().kinematic) return {};
+    const int nn = mesh_->nNodes();
+    if (static_cast<int>(v.size()) != nn) {
+        throw Error("ExplicitSolid::constrainCarriedVelocity: " + std::to_string(v.size()) +
+                    " velocities for " + std::to_string(nn) + " nodes");
+    }
+    const std::vector<Vec3> free = freeComponents();
+    std::vector<double> invMass(nn, 0.0);
+    for (int i = 0; i < nn; ++i) {
+        if (free[i].minCoeff() > 0) invMass[i] = 1.0 / mass_[i];
+    }
+    return contact_->constrainVelocities(*mesh_, currentCoordinates(), v, invMass, dt);
+}
+
 // Sub-steps of equal size within what is left of dt, re-chosen after each
 // one: the stable step follows the deformation and shrinks when contact
 // comes near

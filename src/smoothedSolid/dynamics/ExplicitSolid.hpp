@@ -114,6 +114,13 @@ public:
     // (interactionForce()), which names it: the motion does not evaluate
     // the stress a second time.
     void moveWith(const std::vector<Vec3>& v, double dt);
+    // With contact's kinematic option, the velocities v a carried solid is
+    // about to move with over dt, corrected in place so that no contact
+    // pair within the search depth closes below zero gap in the step
+    // (PenaltyContact::constrainVelocities, at the current coordinates;
+    // nodes that a constraint holds in any component do not change).
+    // Without it, nothing. Throws on a wrong size.
+    KinematicContact constrainCarriedVelocity(std::vector<Vec3>& v, double dt) const;
 
     // --- fibre directions (fibre-reinforced materials) --------------------
     // One direction per element in the reference configuration (normalised

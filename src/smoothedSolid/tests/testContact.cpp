@@ -274,6 +274,53 @@ TEST(Contact, NodesHeldStillHaveNoRigidPairs)
     EXPECT_GT(slides.uy, 0.0);
 }
 
+// A thin plate carried edge on into a rigid plane with the kinematic contact:
+// its bottom edge's nodes have normals along the wall (the plate's faces
+// outweigh its thin edge), so they do not face the plane, yet the plane
+// holds them (a rigid surface has one side). The plate, 2 mm thick and 50
+// mm tall, its edge 5 mm above the plane z = 0, given -1 m/s for 100 steps
+// of 0.1 ms (10 mm): with the kinematic contact no node goes below the
+// plane (tolerance 1e-9 m) and the top keeps its velocity; without it
+// (negative control) the edge ends 5 mm below.
+TEST(Contact, CarriedPlateEdgeOnHeldByRigidPlane)
+{
+    auto run = [](bool kinematic, double& topVelocity) {
+        TetMesh mesh = TetMesh::box(5, 1, 4, [](const Vec3& s) {
+            return Vec3(0.05 * s.x(), 0.002 * s.y(), 0.005 + 0.05 * s.z());
+        });
+        ExplicitSolid solid(std::move(mesh), std::make_shared<NeoHookean>(3e5, 5e6, 1000.0));
+        ContactOptions options;
+        options.kinematic = kinematic;
+        solid.enableContact(options);
+        solid.addRigidSurface({{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)},
+                               {{0, 1, 2}, {0, 2, 3}}});
+        const auto& X = solid.mesh().coordinates();
+        const int nn = static_cast<int>(X.size());
+        double lowest = 1e300;
+        for (int k = 0; k < 100; ++k) {
+            std::vector<Vec3> v(nn, Vec3(0, 0, -1.0));
+            solid.constrainCarriedVelocity(v, 1e-4);
+            solid.moveWith(v, 1e-4);
+        }
+        for (int i = 0; i < nn; ++i) {
+            lowest = std::min(lowest, X[i].z() + solid.displacement()[i].z());
+            if (X[i].z() > 0.0549) topVelocity = solid.velocity()[i].z();
+        }
+        return lowest;
+    };
+    double topWith = 0, topWithout = 0;
+    const double with = run(true, topWith);
+    const double without = run(false, topWithout);
+    std::printf("a plate carried edge on into a rigid plane for 10 mm: with the kinematic contact "
+                "its lowest node at z = %.3g m (expected 0, tolerance -1e-9), its top at %.6g "
+                "m/s (given -1); without it at %.6g m (expected -0.005)\n",
+                with, topWith, without);
+    EXPECT_GT(with, -1e-9);
+    EXPECT_LT(with, 1e-9);
+    EXPECT_DOUBLE_EQ(topWith, -1.0);
+    EXPECT_NEAR(without, -0.005, 1e-12);
+}
+
 TEST(Contact, CubeDroppedOnRigidPlane)
 {
     const ContactOptions options;  // production settings
@@ -484,6 +531,86 @@ TEST(Contact, PlateThrownOnPlateUndampedSmallStep)
 }
 TEST(Contact, PlatePressedOnPlateNonMatching) { platePressedOnPlate(false); }
 TEST(Contact, PlatePressedOnPlateMatching) { platePressedOnPlate(true); }
+
+// A solid carried by a fluid (moveWith) with the kinematic contact: the
+// upper of two matching plates (1 mm apart) given -1 m/s, the lower plate at
+// rest, 20 steps of 0.1 ms (2 mm of travel). The velocities corrected by
+// constrainCarriedVelocity close the gap and then hold it at zero (every
+// upper bottom node above its lower top node by at least -2e-6 m, 1e-3 of
+// the travel: the sweeps stop at 1e-3 of the largest velocity, and the
+// pairs' gaps are to the other surface's triangles, which tilt as the lower
+// plate's lighter edge nodes are pushed faster), keep the given momentum
+// (equal and opposite impulses), and leave the nodes out of contact as
+// given; without the option (negative control) the plates pass 1 mm into
+// each other.
+TEST(Contact, CarriedPlatesHeldApartByKinematicContact)
+{
+    struct Result {
+        double minGap = 1e300, momentumError = 0, topVelocity = 0;
+        int held = 0, sweeps = 0;
+    };
+    auto run = [](bool kinematic) {
+        TetMesh mesh = twoPlates(true, 1e-3);
+        ExplicitSolid solid(std::move(mesh), std::make_shared<NeoHookean>(kMu, kBulk, kRho));
+        solid.fix("lowerBottom");
+        ContactOptions options;
+        options.kinematic = kinematic;
+        solid.enableContact(options);
+        const auto& X = solid.mesh().coordinates();
+        const int nn = static_cast<int>(X.size());
+        const auto& m = solid.lumpedMass();
+        // matching meshes: each upper bottom node above a lower top node
+        std::vector<std::pair<int, int>> above;
+        for (int i = 0; i < nn; ++i) {
+            if (std::abs(X[i].z() - 0.021) > 1e-12) continue;
+            for (int j = 0; j < nn; ++j) {
+                if (std::abs(X[j].z() - 0.02) < 1e-12 && (X[j] - X[i]).head<2>().norm() < 1e-12) {
+                    above.emplace_back(i, j);
+                }
+            }
+        }
+        EXPECT_EQ(above.size(), 121u);
+        Result r;
+        for (int k = 0; k < 20; ++k) {
+            std::vector<Vec3> v(nn, Vec3::Zero());
+            Vec3 given = Vec3::Zero();
+            for (int i = 0; i < nn; ++i) {
+                if (X[i].z() > 0.0205) v[i] = Vec3(0, 0, -1.0);
+                given += m[i] * v[i];
+            }
+            const KinematicContact c = solid.constrainCarriedVelocity(v, 1e-4);
+            Vec3 kept = Vec3::Zero();
+            for (int i = 0; i < nn; ++i) kept += m[i] * v[i];
+            r.momentumError = std::max(r.momentumError, (kept - given).norm() / given.norm());
+            r.held = std::max(r.held, c.held);
+            r.sweeps = std::max(r.sweeps, c.sweeps);
+            solid.moveWith(v, 1e-4);
+            for (const auto& [i, j] : above) {
+                const double gap = X[i].z() + solid.displacement()[i].z() -
+                                   (X[j].z() + solid.displacement()[j].z());
+                r.minGap = std::min(r.minGap, gap);
+            }
+        }
+        for (int i = 0; i < nn; ++i) {
+            if (X[i].z() > 0.0309) r.topVelocity = solid.velocity()[i].z();
+        }
+        return r;
+    };
+    const Result with = run(true);
+    const Result without = run(false);
+    std::printf("carried plates 1 mm apart, the upper at -1 m/s for 2 mm: with the kinematic "
+                "contact the smallest gap %.3g m (expected 0, tolerance -2e-6), momentum kept "
+                "to %.2g (tolerance 1e-12), up to %d pairs held in at most %d sweeps, the upper "
+                "top at %.6g m/s (given -1)\n",
+                with.minGap, with.momentumError, with.held, with.sweeps, with.topVelocity);
+    std::printf("without it: smallest gap %.6g m (expected -0.001)\n", without.minGap);
+    EXPECT_GT(with.minGap, -2e-6);
+    EXPECT_LT(with.minGap, 1e-9);  // the gap closed
+    EXPECT_LT(with.momentumError, 1e-12);
+    EXPECT_GT(with.held, 0);
+    EXPECT_DOUBLE_EQ(with.topVelocity, -1.0);
+    EXPECT_NEAR(without.minGap, -1e-3, 1e-12);
+}
 
 namespace {
 

@@ -6,6 +6,7 @@
 #include "volFields.H"
 #include "tetIndices.H"
 #include "syncTools.H"
+#include "wallPolyPatch.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -13,6 +14,7 @@ Foam::cellTetTransfer::cellTetTransfer(const fvMesh& mesh)
 :
     mesh_(mesh),
     pointVolume_(),
+    wallNormal_(),
     ownCentre_(),
     nSmallCells_(0),
     cell_(),
@@ -67,6 +69,67 @@ void Foam::cellTetTransfer::setPointData(const scalar smallCell)
         }
     }
     nSmallCells_ = returnReduce(nSmall, sumOp<label>());
+}
+
+
+Foam::label Foam::cellTetTransfer::setWallSlip()
+{
+    // the area-weighted normals of the wall faces around each wall point,
+    // summed over the patches and the ranks (a point where two walls meet
+    // takes their mean), then normalised
+    wallNormal_.setSize(mesh_.nPoints());
+    wallNormal_ = Zero;
+    const vectorField& Sf = mesh_.faceAreas();
+    for (const polyPatch& pp : mesh_.boundaryMesh())
+    {
+        if (!isA<wallPolyPatch>(pp))
+        {
+            continue;
+        }
+        forAll(pp, i)
+        {
+            const label facei = pp.start() + i;
+            for (const label pointi : mesh_.faces()[facei])
+            {
+                wallNormal_[pointi] += Sf[facei];
+            }
+        }
+    }
+    syncTools::syncPointList
+    (
+        mesh_, wallNormal_, plusEqOp<vector>(), vector::zero
+    );
+    const bitSet master(syncTools::getMasterPoints(mesh_));
+    label n = 0;
+    forAll(wallNormal_, pointi)
+    {
+        const scalar m = mag(wallNormal_[pointi]);
+        if (m > VSMALL)
+        {
+            wallNormal_[pointi] /= m;
+            n += master.test(pointi);
+        }
+        else
+        {
+            wallNormal_[pointi] = Zero;
+        }
+    }
+    // a point on a processor boundary counted once
+    return returnReduce(n, sumOp<label>());
+}
+
+
+void Foam::cellTetTransfer::wallSlip(vectorField& pointValues) const
+{
+    if (wallNormal_.empty())
+    {
+        return;
+    }
+    forAll(pointValues, pointi)
+    {
+        const vector& n = wallNormal_[pointi];
+        pointValues[pointi] -= (n & pointValues[pointi])*n;
+    }
 }
 
 
@@ -151,6 +214,7 @@ Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::pointValues
     {
         up[pointi] /= pointVolume_[pointi];
     }
+    wallSlip(up);
     return tup;
 }
 
@@ -239,6 +303,7 @@ void Foam::cellTetTransfer::spread
         }
     }
     syncTools::syncPointList(mesh_, pointF, plusEqOp<vector>(), vector::zero);
+    wallSlip(pointF);
 
     const labelListList& pointCells = mesh_.pointCells();
     forAll(pointF, pointi)

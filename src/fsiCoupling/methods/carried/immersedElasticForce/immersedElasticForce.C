@@ -469,6 +469,8 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     transfer_(mesh),
     locator_(),
     smallCell_(0.2),
+    wallSlip_(false),
+    wallPoints_(0),
     force_
     (
         IOobject
@@ -542,6 +544,16 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     locator_.reset(new immersedPointLocator(mesh, 100));
     updateStencils();
     setTetherMobility();
+    if (wallSlip_)
+    {
+        // after the tethers' mobility, which is taken without the slip:
+        // its row sums, one number per tether for the same unit force in
+        // every component, take a single component of the result, and with
+        // the walls' normal components removed that component can come out
+        // near zero at a tether by the wall, its inverse the tethers' gain
+        // (their force grew tenfold a step from the start)
+        wallPoints_ = transfer_.setWallSlip();
+    }
     // the force of the start time: on a restart with the tethers' state,
     // as the interrupted run had it for this step
     string why;
@@ -867,7 +879,13 @@ void Foam::fv::immersedElasticForce::report() const
         << "; " << outside_ << " free nodes outside the fluid mesh"
         << " (taken in their nearest cell); " << transfer_.nSmallCells() << " cells"
         << " smaller than " << smallCell_ << " of the cells around them"
-        << " take their centre's value from their points; force on the fluid "
+        << " take their centre's value from their points; "
+        << (
+               wallSlip_
+             ? Foam::name(wallPoints_) + " wall points with no normal velocity"
+             : string("wall points free")
+           ).c_str()
+        << "; force on the fluid "
         << fluidForce_ << " N, on the walls " << wallForce_ << " N" << nl
         << endl;
 }
@@ -1184,6 +1202,14 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << " during a run (restart the solver)" << exit(FatalIOError);
     }
     elementPoints_ = elements;
+    const bool wallSlip = coeffs_.getOrDefault<Switch>("wallSlip", false);
+    if (transfer_.size() && wallSlip != wallSlip_)
+    {
+        FatalIOErrorInFunction(coeffs_)
+            << "fvOption " << name_ << ": wallSlip cannot change during a"
+            << " run (restart the solver)" << exit(FatalIOError);
+    }
+    wallSlip_ = wallSlip;
     smallCell_ = coeffs_.getOrDefault<scalar>("smallCell", 0.2);
     tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);
     tetherStiffness_ = coeffs_.getOrDefault<scalar>("tetherStiffness", 0.1);

@@ -382,13 +382,20 @@ void Foam::immersedSolids::deformable::readLoadsAndContact()
         const dictionary& c = dict_.subDict("contact");
         checkKeys
         (
-            c, {"self", "dampingRatio", "stepFraction", "penaltyScale"}
+            c,
+            {
+                "self", "dampingRatio", "stepFraction", "penaltyScale",
+                "depthFraction", "kinematic"
+            }
         );
         smoothedSolid::ContactOptions co;
         co.selfContact = c.getOrDefault<Switch>("self", false);
         co.dampingRatio = c.getOrDefault<scalar>("dampingRatio", co.dampingRatio);
         co.stepFraction = c.getOrDefault<scalar>("stepFraction", co.stepFraction);
         co.penaltyScale = c.getOrDefault<scalar>("penaltyScale", co.penaltyScale);
+        co.depthFraction =
+            c.getOrDefault<scalar>("depthFraction", co.depthFraction);
+        co.kinematic = c.getOrDefault<Switch>("kinematic", co.kinematic);
         guarded(dict_, "contact", [&] { s.enableContact(co); });
     }
     if (dict_.found("contactSurfaces"))
@@ -760,7 +767,7 @@ bool Foam::immersedSolids::deformable::stiffnessAction
 
 bool Foam::immersedSolids::deformable::tryMoveWith
 (
-    const vectorField& v,
+    vectorField& v,
     const scalar dt,
     string& why
 )
@@ -772,6 +779,19 @@ bool Foam::immersedSolids::deformable::tryMoveWith
     }
     try
     {
+        const smoothedSolid::KinematicContact k =
+            solid_->constrainCarriedVelocity(d, dt);
+        if (k.held)
+        {
+            forAll(v, i)
+            {
+                v[i] = vector(d[i](0), d[i](1), d[i](2));
+            }
+            Info<< "deformable solid: contact held " << k.held << " of "
+                << k.pairs << " pairs (smallest gap " << 1e3*k.minGap
+                << " mm; largest velocity change " << k.maxChange
+                << " m/s; " << k.sweeps << " sweeps)" << endl;
+        }
         solid_->moveWith(d, dt);
     }
     catch (const smoothedSolid::Error& err)
