@@ -97,6 +97,8 @@ void Foam::windkesselFvPatchScalarField::startStep
     {
         // the step before ended with the flow of its last solve
         s_.pC0 = pC1(Q);
+        s_.Qm1 = s_.Q0;
+        s_.dtm1 = s_.dt;
         s_.Q0 = Q;
     }
     else if (!s_.Q0Known)
@@ -135,7 +137,16 @@ Foam::scalar Foam::windkesselFvPatchScalarField::iterate
     const label corrector
 )
 {
-    scalar p = pOut(s_.Q0);     // the step's first: the flow of the step before
+    // the step's first: the flow of the step before (lagged), or for the
+    // implicit coupling that flow extrapolated linearly over the step (a
+    // residual of second order in the step; the step at most twice the one
+    // before in the extrapolation)
+    scalar Qstart = s_.Q0;
+    if (par_.coupling == couplingType::implicit && s_.dtm1 > 0)
+    {
+        Qstart += (s_.Q0 - s_.Qm1)*min(s_.dt/s_.dtm1, scalar(2));
+    }
+    scalar p = pOut(Qstart);
     if (par_.coupling == couplingType::implicit && s_.iter > 0)
     {
         // the residual of the last solve: it was given p1 and gave Q
@@ -250,6 +261,10 @@ Foam::windkesselFvPatchScalarField::windkesselFvPatchScalarField
     );
     s_.Q0Known = dict.readIfPresent("Q", s_.Q0);
     dict.readIfPresent("slope", s_.slope);
+    if (s_.Q0Known && dict.readIfPresent("deltaTPrevious", s_.dtm1))
+    {
+        s_.Qm1 = dict.get<scalar>("QPrevious");
+    }
     check(dict);
 }
 
@@ -444,6 +459,15 @@ void Foam::windkesselFvPatchScalarField::write(Ostream& os) const
         os.writeEntry("Q", s_.timeIndex < 0 ? s_.Q0 : flow());
     }
     os.writeEntry("slope", s_.slope);
+    // the step that ended here: its starting flow and length (the first
+    // iterate's extrapolation)
+    const scalar QPrevious = s_.timeIndex < 0 ? s_.Qm1 : s_.Q0;
+    const scalar deltaTPrevious = s_.timeIndex < 0 ? s_.dtm1 : s_.dt;
+    if (deltaTPrevious > 0)
+    {
+        os.writeEntry("QPrevious", QPrevious);
+        os.writeEntry("deltaTPrevious", deltaTPrevious);
+    }
     writeEntry("value", os);
 }
 
