@@ -74,7 +74,9 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
     nOutletIterations_
     (
         control_.dict().getOrDefault<label>("nOutletIterations", 10)
-    )
+    ),
+    startIndex_(-1),
+    startDeltaT_(0)
 {
     Info<< "Fluid: CBS-equivalent projection (Steps I-III), "
         << "viscosity model "
@@ -112,6 +114,18 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
         }
     }
 
+    // the fields a step's end corrects besides U, phi and p: the viscosity
+    // (generalised Newtonian models) and the turbulence model's
+    for (const char* name : {"nu", "nut", "k", "epsilon", "omega", "nuTilda"})
+    {
+        const word field(IOobject::groupName(name, U_.group()));
+        if (mesh_.foundObject<volScalarField>(field))
+        {
+            startScalarNames_.append(field);
+        }
+    }
+    startScalars_.setSize(startScalarNames_.size());
+
     setRefCell(p_, control_.dict(), pRefCell_, pRefValue_);
     mesh_.setFluxRequired(p_.name());
     for (fv::immersedMethod& m : immersed_)
@@ -127,7 +141,110 @@ Foam::cbsProjectionFluid::cbsProjectionFluid(fvMesh& mesh)
 }
 
 
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * //
+
+namespace
+{
+
+// A field's values: the internal field, then each patch's
+template<class Type, template<class> class PatchField, class GeoMesh>
+void storeValues
+(
+    const Foam::GeometricField<Type, PatchField, GeoMesh>& f,
+    Foam::List<Foam::Field<Type>>& values
+)
+{
+    const auto& bf = f.boundaryField();
+    values.setSize(bf.size() + 1);
+    values[0] = f.primitiveField();
+    forAll(bf, patchi)
+    {
+        values[patchi + 1] = bf[patchi];
+    }
+}
+
+
+template<class Type, template<class> class PatchField, class GeoMesh>
+void restoreValues
+(
+    Foam::GeometricField<Type, PatchField, GeoMesh>& f,
+    const Foam::List<Foam::Field<Type>>& values
+)
+{
+    f.primitiveFieldRef() = values[0];
+    auto& bf = f.boundaryFieldRef();
+    forAll(bf, patchi)
+    {
+        bf[patchi] == values[patchi + 1];
+    }
+}
+
+} // End anonymous namespace
+
+
 // * * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * //
+
+void Foam::cbsProjectionFluid::stepStart()
+{
+    // A step solved again at another length (an immersed method refused
+    // it: an element inverted, or a node outran the solid's stable step)
+    // starts from the state the step started from, as the step taken at
+    // that length in the first place would. The refused solve's flux,
+    // pressure and eddy viscosity would otherwise carry its velocities
+    // into the new solve's convection, pressure predictor and stress:
+    // after a refused step whose nodes' velocity had jumped by tens of
+    // m/s the next momentum matrix was no longer diagonally dominant and
+    // its solve diverged. The coupling iterations of one step (the sharp
+    // method's) keep its length and go on from their last iterate, as
+    // PIMPLE's outer correctors do.
+    if (immersed_.empty())
+    {
+        return;
+    }
+    const Time& runTime = mesh_.time();
+    const scalar dt = runTime.deltaTValue();
+    if (runTime.timeIndex() != startIndex_)
+    {
+        startIndex_ = runTime.timeIndex();
+        startDeltaT_ = dt;
+        storeValues(U_, startU_);
+        storeValues(phi_, startPhi_);
+        storeValues(p_, startP_);
+        forAll(startScalarNames_, i)
+        {
+            storeValues
+            (
+                mesh_.lookupObject<volScalarField>(startScalarNames_[i]),
+                startScalars_[i]
+            );
+        }
+        return;
+    }
+    if (dt == startDeltaT_)
+    {
+        return;
+    }
+    startDeltaT_ = dt;
+    restoreValues(U_, startU_);
+    restoreValues(phi_, startPhi_);
+    restoreValues(p_, startP_);
+    forAll(startScalarNames_, i)
+    {
+        restoreValues
+        (
+            mesh_.lookupObjectRef<volScalarField>(startScalarNames_[i]),
+            startScalars_[i]
+        );
+    }
+    Info<< "Fluid: the step solved again from its start at deltaT " << dt
+        << " s (U, phi, p";
+    for (const word& name : startScalarNames_)
+    {
+        Info<< ", " << name;
+    }
+    Info<< " as at its start)" << endl;
+}
+
 
 Foam::tmp<Foam::fvVectorMatrix>
 Foam::cbsProjectionFluid::intermediateMomentum()
@@ -617,6 +734,8 @@ void Foam::cbsProjectionFluid::adjustDeltaT()
 
 void Foam::cbsProjectionFluid::solve()
 {
+    stepStart();
+
     // Step I
     tmp<fvVectorMatrix> tUEqn(intermediateMomentum());
 

@@ -895,6 +895,43 @@ Foam::fv::immersedElasticForce::~immersedElasticForce()
 {}
 
 
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * //
+
+namespace
+{
+
+// The time step again from its start t0 at the length dt. Time::setDeltaT
+// leaves the length Time::operator++ saves for the next step's deltaT0
+// (TimeState::deltaTSave_) at the refused length: the next step's
+// backward time derivative would take the refused length for the old
+// step's (a step halved and the next as long: 7/6 of a steady
+// acceleration). Reached through a class derived from TimeState, the
+// only access to it.
+struct stepRepeat
+:
+    public Foam::TimeState
+{
+    static void set(Foam::Time& runTime, const Foam::scalar dt)
+    {
+        runTime.*(&stepRepeat::deltaTSave_) = dt;
+    }
+};
+
+void repeatStep
+(
+    Foam::Time& runTime,
+    const Foam::scalar t0,
+    const Foam::scalar dt
+)
+{
+    runTime.setDeltaT(dt, false);
+    runTime.setTime(t0 + dt, runTime.timeIndex());
+    stepRepeat::set(runTime, dt);
+}
+
+} // End anonymous namespace
+
+
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
 Foam::tmp<Foam::vectorField> Foam::fv::immersedElasticForce::nodeVelocity
@@ -952,8 +989,7 @@ bool Foam::fv::immersedElasticForce::refuseStep(const vectorField& v)
     const scalar dtMax = stableStep_.maxDeltaT(beta);
     ++refusals_;
     const scalar t0 = runTime.value() - dt;
-    runTime.setDeltaT(dtMax, false);
-    runTime.setTime(t0 + dtMax, runTime.timeIndex());
+    repeatStep(runTime, t0, dtMax);
     Info<< type() << ' ' << name_ << ": step refused (deltaT " << dt
         << " s above the stable step " << stableStep_.stableDeltaT(beta)
         << " s): repeated from " << t0 << " s with deltaT " << dtMax
@@ -974,8 +1010,7 @@ void Foam::fv::immersedElasticForce::repeatShorter
     solid_->restoreState();
     lastVelocity_ = vLast;
     ++retries_;
-    runTime.setDeltaT(0.5*dt, false);
-    runTime.setTime(t0 + 0.5*dt, runTime.timeIndex());
+    repeatStep(runTime, t0, 0.5*dt);
     updateStencils();
     // the look-ahead force of the step's start at the shorter step
     string whyStart;
