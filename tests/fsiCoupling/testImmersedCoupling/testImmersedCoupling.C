@@ -27,6 +27,10 @@ Description
         -test balancedFlux  the balanced body force's flux and
                        reconstruction (balancedForceFlux): symmetric and
                        positive, linear interpolation not; a uniform force
+        -test wallPoints  cellTetTransfer's wall points (free, slip,
+                       noSlip) beside the cube's walls: the near-wall
+                       interpolation of a field vanishing on a wall, and
+                       spread as gather's transpose under each condition
         -test wallInterp  the forcing of cutCells interpolation
                        (immersedWallInterpolation) beside a tilted plane:
                        a velocity linear in the distance to the wall is
@@ -59,6 +63,8 @@ Description
 #include "fvMatrices.H"
 #include "balancedForceFlux.H"
 #include "zeroGradientFvPatchFields.H"
+#include "cellTetTransfer.H"
+#include "syncTools.H"
 
 using namespace Foam;
 
@@ -244,7 +250,13 @@ int main(int argc, char *argv[])
         "carriedFlux: immersedElasticForce's transferPoints"
         " (nodes | elements; default nodes)"
     );
-    argList::addOption("test", "name", "solid | force | pairs | walk | interp | carriedFlux | balancedFlux | coverage | coupling | enclosed | outside | cutCells | wallInterp");
+    argList::addOption
+    (
+        "wallPoints", "word",
+        "carriedFlux: immersedElasticForce's wallPoints"
+        " (free | slip | noSlip; default free)"
+    );
+    argList::addOption("test", "name", "solid | force | pairs | walk | interp | carriedFlux | balancedFlux | wallPoints | coverage | coupling | enclosed | outside | cutCells | wallInterp");
     argList::addOption("placements", "N", "random placements (pairs)");
     argList::addOption("steps", "N", "motion steps (walk)");
     argList::addOption("shift", "vector", "translation (outside)");
@@ -541,6 +553,11 @@ int main(int argc, char *argv[])
         (
             "transferPoints",
             args.getOrDefault<word>("transferPoints", "nodes")
+        );
+        optDict.add
+        (
+            "wallPoints",
+            args.getOrDefault<word>("wallPoints", "free")
         );
         fv::immersedElasticForce opt
         (
@@ -1863,6 +1880,257 @@ int main(int argc, char *argv[])
                     " its total", eSpread, 0, 1e-12, eSpread < 1e-12);
             }
         }
+    }
+    else if (test == "wallPoints")
+    {
+        // cellTetTransfer's wall points (immersedElasticForce's wallPoints)
+        // in the unit cube, every side a wall:
+        // (A) points at a small distance d from the wall x = 0, each in
+        // the tet of a wall face of its cell, sample u = x (0.3, 1, -0.5),
+        // which vanishes on that wall: with noSlip the tet interpolates
+        // between the cell centre and zero on the wall, exact for u
+        // (u(x) = x/x_c u_c = w_0 u_c); with slip only the normal (x)
+        // component is; with free neither (the wall points carry the
+        // cells' mean: the negative control);
+        // (B) random cell values and point forces: spread is gather's
+        // transpose in the cells' mass inner product, sum_i F_i . v_i =
+        // rho sum_c V_c s_c . u_c, for every condition (the noSlip gather
+        // against the free spread is not: the control)
+        const scalar rho = 1000.0;
+        const scalar d = 1e-4;
+        const vector c(0.3, 1, -0.5);
+        Random rnd(1234);
+        const label nNear = 60, nInside = 200;
+        pointField x(nNear + nInside);
+        forAll(x, i)
+        {
+            x[i] =
+                i < nNear
+              ? point(d, 0.15 + 0.7*rnd.sample01<scalar>(),
+                    0.15 + 0.7*rnd.sample01<scalar>())
+              : point(0.05 + 0.9*rnd.sample01<scalar>(),
+                    0.05 + 0.9*rnd.sample01<scalar>(),
+                    0.05 + 0.9*rnd.sample01<scalar>());
+        }
+        // each point in one rank's cell
+        labelList cellOf(x.size(), -1);
+        labelList owner(x.size(), -1);
+        forAll(x, i)
+        {
+            cellOf[i] = mesh.findCell(x[i]);
+            if (cellOf[i] >= 0)
+            {
+                owner[i] = Pstream::myProcNo();
+            }
+        }
+        Pstream::listCombineGather(owner, maxEqOp<label>());
+        Pstream::listCombineScatter(owner);
+        // (A)'s points: in the tet of a wall face on x = 0 of their cell,
+        // the foot of the perpendicular at least 10 d inside the triangle
+        boolList nearWall(x.size(), false);
+        forAll(x, i)
+        {
+            if (owner[i] != Pstream::myProcNo())
+            {
+                cellOf[i] = -1;
+                continue;
+            }
+            if (i >= nNear)
+            {
+                continue;
+            }
+            for (const label facei : mesh.cells()[cellOf[i]])
+            {
+                if (mesh.isInternalFace(facei))
+                {
+                    continue;
+                }
+                const face& f = mesh.faces()[facei];
+                const pointField& P = mesh.points();
+                bool onWall = (f.size() == 3);
+                for (const label pi : f)
+                {
+                    onWall = onWall && mag(P[pi].x()) < SMALL;
+                }
+                if (!onWall)
+                {
+                    continue;
+                }
+                // barycentric coordinates of (y, z) in the triangle
+                const vector2D a(P[f[0]].y(), P[f[0]].z());
+                const vector2D b(P[f[1]].y(), P[f[1]].z());
+                const vector2D e(P[f[2]].y(), P[f[2]].z());
+                const vector2D q(x[i].y(), x[i].z());
+                const scalar det =
+                    (b.x() - a.x())*(e.y() - a.y())
+                  - (e.x() - a.x())*(b.y() - a.y());
+                const scalar l1 =
+                    ((q.x() - a.x())*(e.y() - a.y())
+                  - (e.x() - a.x())*(q.y() - a.y()))/det;
+                const scalar l2 =
+                    ((b.x() - a.x())*(q.y() - a.y())
+                  - (q.x() - a.x())*(b.y() - a.y()))/det;
+                // 10 d from every edge (the edges are about 0.1 long)
+                const scalar margin = 10*d/0.1;
+                if (l1 > margin && l2 > margin && 1 - l1 - l2 > margin)
+                {
+                    nearWall[i] = true;
+                }
+            }
+        }
+        label nOwned = 0, nWallTets = 0;
+        forAll(x, i)
+        {
+            nOwned += (owner[i] >= 0);
+            nWallTets += nearWall[i];
+        }
+        reduce(nWallTets, sumOp<label>());
+        check("points held by a rank", nOwned, x.size(), 0,
+            nOwned == x.size());
+        check("points near x = 0 in a wall face's tet (at least 20)",
+            nWallTets, nNear, nNear - 20, nWallTets >= 20);
+
+        const vectorField& C = mesh.C();
+        vectorField uLinear(mesh.nCells());
+        forAll(uLinear, celli)
+        {
+            uLinear[celli] = C[celli].x()*c;
+        }
+        vectorField uRandom(mesh.nCells());
+        forAll(uRandom, celli)
+        {
+            // a smooth field, the same on any decomposition
+            const point& y = C[celli];
+            uRandom[celli] = vector
+            (
+                Foam::sin(7*y.x() + 3*y.y()), Foam::cos(5*y.y() - 2*y.z()),
+                Foam::sin(4*y.z() + 6*y.x() + 1)
+            );
+        }
+        vectorField F(x.size());
+        forAll(F, i)
+        {
+            F[i] = vector
+            (
+                Foam::sin(11*x[i].x() + 2*x[i].z()),
+                Foam::cos(3*x[i].y() + 5*x[i].x()),
+                Foam::sin(9*x[i].z() - 4*x[i].y() + 0.5)
+            );
+        }
+
+        typedef cellTetTransfer::wallCondition wallCondition;
+        auto makeTransfer = [&](cellTetTransfer& t, const wallCondition w)
+        {
+            t.setSize(x.size());
+            // every cell centre its own value (no sliver rule): (A)'s
+            // tets interpolate the cell's own value
+            t.setPointData(0);
+            forAll(x, i)
+            {
+                t.setCell(i, cellOf[i]);
+                if (cellOf[i] >= 0)
+                {
+                    t.setWeights(i, x[i]);
+                }
+            }
+            return t.setWallPoints(w);
+        };
+        // the transpose: sum_i F_i . v_i against rho sum_c V_c s_c . u_c
+        auto asymmetry = [&]
+        (
+            const cellTetTransfer& gatherWith,
+            const cellTetTransfer& spreadWith
+        )
+        {
+            const vectorField v(gatherWith.gather(uRandom));
+            vectorField s;
+            spreadWith.spread(F, rho, s);
+            scalar solid = 0, scale = 0;
+            forAll(F, i)
+            {
+                solid += F[i] & v[i];
+                scale += mag(F[i])*mag(v[i]);
+            }
+            scalar fluid = 0;
+            forAll(s, celli)
+            {
+                fluid += rho*mesh.V()[celli]*(s[celli] & uRandom[celli]);
+            }
+            reduce(fluid, sumOp<scalar>());
+            return mag(solid - fluid)/scale;
+        };
+
+        cellTetTransfer freeT(mesh), slipT(mesh), noSlipT(mesh);
+        const label nWall = makeTransfer(freeT, wallCondition::free);
+        makeTransfer(slipT, wallCondition::slip);
+        const label nWallPoints = makeTransfer(noSlipT, wallCondition::noSlip);
+        // the cube's boundary points (gmsh: every boundary point on a wall)
+        label nBoundary = 0;
+        {
+            const bitSet master(syncTools::getMasterPoints(mesh));
+            const labelList& bp = mesh.boundaryMesh()["walls"].meshPoints();
+            for (const label pi : bp)
+            {
+                nBoundary += master.test(pi);
+            }
+            reduce(nBoundary, sumOp<label>());
+        }
+        Info<< "wall points: " << nWallPoints << " (the walls' points "
+            << nBoundary << "); free: " << nWall << endl;
+        check("wall points counted once", nWallPoints, nBoundary, 0,
+            nWallPoints == nBoundary && nWall == 0);
+
+        // (A): the largest error on the near-wall points over d |c|
+        auto nearError = [&](const cellTetTransfer& t, const bool normalOnly)
+        {
+            const vectorField v(t.gather(uLinear));
+            scalar err = 0;
+            forAll(x, i)
+            {
+                label held = nearWall[i];
+                reduce(held, sumOp<label>());
+                if (!held)
+                {
+                    continue;
+                }
+                const vector exact(x[i].x()*c);
+                err = max
+                (
+                    err,
+                    normalOnly
+                  ? mag(v[i].x() - exact.x())
+                  : mag(v[i] - exact)
+                );
+            }
+            return err/(d*mag(c));
+        };
+        const scalar errNoSlip = nearError(noSlipT, false);
+        const scalar errSlipNormal = nearError(slipT, true);
+        const scalar errSlip = nearError(slipT, false);
+        const scalar errFree = nearError(freeT, false);
+        const scalar errFreeNormal = nearError(freeT, true);
+        Info<< "(A) u = x c at " << d << " from the wall, error / (d |c|):"
+            << endl;
+        check("noSlip: u", errNoSlip, 0, 1e-8, errNoSlip < 1e-8);
+        check("slip: u's normal component", errSlipNormal, 0, 1e-8,
+            errSlipNormal < 1e-8);
+        check("slip: u (tangential kept: must exceed 1)", errSlip, 0, 1,
+            errSlip > 1);
+        check("free: u (negative control: must exceed 1)", errFree, 0, 1,
+            errFree > 1);
+        check("free: u's normal component (control: must exceed 1)",
+            errFreeNormal, 0, 1, errFreeNormal > 1);
+
+        Info<< "(B) |sum F.v - rho sum V s.u| / sum |F||v|:" << endl;
+        const scalar aFree = asymmetry(freeT, freeT);
+        const scalar aSlip = asymmetry(slipT, slipT);
+        const scalar aNoSlip = asymmetry(noSlipT, noSlipT);
+        const scalar aControl = asymmetry(noSlipT, freeT);
+        check("free: transpose", aFree, 0, 1e-12, aFree < 1e-12);
+        check("slip: transpose", aSlip, 0, 1e-12, aSlip < 1e-12);
+        check("noSlip: transpose", aNoSlip, 0, 1e-12, aNoSlip < 1e-12);
+        check("noSlip gather, free spread (control: must exceed 1e-3)",
+            aControl, 0, 1e-3, aControl > 1e-3);
     }
     else if (test == "outside")
     {

@@ -8,12 +8,24 @@
 #include "syncTools.H"
 #include "wallPolyPatch.H"
 
+// * * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
+
+const Foam::Enum<Foam::cellTetTransfer::wallCondition>
+Foam::cellTetTransfer::wallConditionNames
+({
+    { wallCondition::free, "free" },
+    { wallCondition::slip, "slip" },
+    { wallCondition::noSlip, "noSlip" },
+});
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::cellTetTransfer::cellTetTransfer(const fvMesh& mesh)
 :
     mesh_(mesh),
     pointVolume_(),
+    wall_(wallCondition::free),
     wallNormal_(),
     ownCentre_(),
     nSmallCells_(0),
@@ -72,8 +84,14 @@ void Foam::cellTetTransfer::setPointData(const scalar smallCell)
 }
 
 
-Foam::label Foam::cellTetTransfer::setWallSlip()
+Foam::label Foam::cellTetTransfer::setWallPoints(const wallCondition c)
 {
+    wall_ = c;
+    if (c == wallCondition::free)
+    {
+        wallNormal_.clear();
+        return 0;
+    }
     // the area-weighted normals of the wall faces around each wall point,
     // summed over the patches and the ranks (a point where two walls meet
     // takes their mean), then normalised
@@ -119,16 +137,31 @@ Foam::label Foam::cellTetTransfer::setWallSlip()
 }
 
 
-void Foam::cellTetTransfer::wallSlip(vectorField& pointValues) const
+void Foam::cellTetTransfer::applyWall(vectorField& pointValues) const
 {
     if (wallNormal_.empty())
     {
         return;
     }
-    forAll(pointValues, pointi)
+    if (wall_ == wallCondition::slip)
     {
-        const vector& n = wallNormal_[pointi];
-        pointValues[pointi] -= (n & pointValues[pointi])*n;
+        // (I - n n^T) u_p
+        forAll(pointValues, pointi)
+        {
+            const vector& n = wallNormal_[pointi];
+            pointValues[pointi] -= (n & pointValues[pointi])*n;
+        }
+    }
+    else
+    {
+        // the wall at rest: zero (n is zero off the walls)
+        forAll(pointValues, pointi)
+        {
+            if (wallNormal_[pointi] != vector::zero)
+            {
+                pointValues[pointi] = Zero;
+            }
+        }
     }
 }
 
@@ -214,7 +247,7 @@ Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::pointValues
     {
         up[pointi] /= pointVolume_[pointi];
     }
-    wallSlip(up);
+    applyWall(up);
     return tup;
 }
 
@@ -303,7 +336,7 @@ void Foam::cellTetTransfer::spread
         }
     }
     syncTools::syncPointList(mesh_, pointF, plusEqOp<vector>(), vector::zero);
-    wallSlip(pointF);
+    applyWall(pointF);
 
     const labelListList& pointCells = mesh_.pointCells();
     forAll(pointF, pointi)

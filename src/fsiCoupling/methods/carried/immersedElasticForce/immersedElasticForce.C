@@ -10,6 +10,8 @@
 #include "clockTime.H"
 #include "zeroGradientFvPatchFields.H"
 #include "OFstream.H"
+#include "wallPolyPatch.H"
+#include "fixedValueFvPatchFields.H"
 #include "IFstream.H"
 #include "addToRunTimeSelectionTable.H"
 
@@ -469,7 +471,7 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     transfer_(mesh),
     locator_(),
     smallCell_(0.2),
-    wallSlip_(false),
+    wallCondition_(cellTetTransfer::wallCondition::free),
     wallPoints_(0),
     force_
     (
@@ -544,16 +546,14 @@ Foam::fv::immersedElasticForce::immersedElasticForce
     locator_.reset(new immersedPointLocator(mesh, 100));
     updateStencils();
     setTetherMobility();
-    if (wallSlip_)
-    {
-        // after the tethers' mobility, which is taken without the slip:
-        // its row sums, one number per tether for the same unit force in
-        // every component, take a single component of the result, and with
-        // the walls' normal components removed that component can come out
-        // near zero at a tether by the wall, its inverse the tethers' gain
-        // (their force grew tenfold a step from the start)
-        wallPoints_ = transfer_.setWallSlip();
-    }
+    // after the tethers' mobility, which is taken with the wall points
+    // free: its row sums, one number per tether for the same unit force in
+    // every component, take a single component of the result, and with
+    // the walls' normal components removed (slip) that component can come
+    // out near zero at a tether by the wall, its inverse the tethers' gain
+    // (their force grew tenfold a step from the start)
+    checkWallPoints();
+    wallPoints_ = transfer_.setWallPoints(wallCondition_);
     // the force of the start time: on a restart with the tethers' state,
     // as the interrupted run had it for this step
     string why;
@@ -603,6 +603,43 @@ void Foam::fv::immersedElasticForce::checkSolid() const
             << " in the fvOption. Set them equal (blood and leaflets:"
             << " 1000), or use type immersedForcing for a denser solid"
             << exit(FatalIOError);
+    }
+}
+
+
+void Foam::fv::immersedElasticForce::checkWallPoints() const
+{
+    if
+    (
+        wallCondition_ != cellTetTransfer::wallCondition::noSlip
+     || !mesh_.foundObject<volVectorField>(fieldNames_[0])
+    )
+    {
+        return;
+    }
+    // the wall points carry zero, the value of a wall at rest: a moving
+    // wall's velocity, or a wall the fluid slips along, would be lost
+    const volVectorField& U =
+        mesh_.lookupObject<volVectorField>(fieldNames_[0]);
+    for (const fvPatchVectorField& Up : U.boundaryField())
+    {
+        if (!isA<wallPolyPatch>(Up.patch().patch()))
+        {
+            continue;
+        }
+        const scalar magU =
+            returnReduce(Up.size() ? max(mag(Up)) : scalar(0), maxOp<scalar>());
+        // (calculated fixes its value too, but nothing holds it)
+        if (!isA<fixedValueFvPatchVectorField>(Up) || magU > 0)
+        {
+            FatalIOErrorInFunction(coeffs_)
+                << "fvOption " << name_ << ": wallPoints noSlip holds the"
+                << " wall points at rest, but wall patch "
+                << Up.patch().name() << " has " << U.name() << " of type "
+                << Up.type() << " (largest value " << magU << " m/s). Give"
+                << " it noSlip (or a fixedValue of zero), or set wallPoints"
+                << " slip or free" << exit(FatalIOError);
+        }
     }
 }
 
@@ -881,9 +918,14 @@ void Foam::fv::immersedElasticForce::report() const
         << " smaller than " << smallCell_ << " of the cells around them"
         << " take their centre's value from their points; "
         << (
-               wallSlip_
-             ? Foam::name(wallPoints_) + " wall points with no normal velocity"
-             : string("wall points free")
+               wallCondition_ == cellTetTransfer::wallCondition::free
+             ? string("wall points free")
+             : Foam::name(wallPoints_) + " wall points "
+             + (
+                   wallCondition_ == cellTetTransfer::wallCondition::slip
+                 ? "with no normal velocity (slip)"
+                 : "at rest (noSlip)"
+               )
            ).c_str()
         << "; force on the fluid "
         << fluidForce_ << " N, on the walls " << wallForce_ << " N" << nl
@@ -1209,7 +1251,9 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             {"deviatoricOnly", "the whole stress of the leaflets enters"
                 " (remove the entry)"},
             {"noSlipPoints", "the held nodes hold the fluid through"
-                " tetherRelaxation and tetherStiffness (remove the entry)"}
+                " tetherRelaxation and tetherStiffness (remove the entry)"},
+            {"wallSlip", "replaced by wallPoints free, slip or noSlip"
+                " (wallSlip yes is wallPoints slip)"}
         },
         "fvOption " + name_
     );
@@ -1237,14 +1281,22 @@ bool Foam::fv::immersedElasticForce::read(const dictionary& dict)
             << " during a run (restart the solver)" << exit(FatalIOError);
     }
     elementPoints_ = elements;
-    const bool wallSlip = coeffs_.getOrDefault<Switch>("wallSlip", false);
-    if (transfer_.size() && wallSlip != wallSlip_)
+    const cellTetTransfer::wallCondition wall =
+        readEnumEntry
+        (
+            cellTetTransfer::wallConditionNames,
+            "wallPoints",
+            coeffs_,
+            cellTetTransfer::wallCondition::free,
+            "fvOption " + name_
+        );
+    if (transfer_.size() && wall != wallCondition_)
     {
         FatalIOErrorInFunction(coeffs_)
-            << "fvOption " << name_ << ": wallSlip cannot change during a"
+            << "fvOption " << name_ << ": wallPoints cannot change during a"
             << " run (restart the solver)" << exit(FatalIOError);
     }
-    wallSlip_ = wallSlip;
+    wallCondition_ = wall;
     smallCell_ = coeffs_.getOrDefault<scalar>("smallCell", 0.2);
     tetherRelaxation_ = coeffs_.getOrDefault<scalar>("tetherRelaxation", 0.5);
     tetherStiffness_ = coeffs_.getOrDefault<scalar>("tetherStiffness", 0.1);
