@@ -31,7 +31,6 @@ Description
                        noSlip) beside the cube's walls: the near-wall
                        interpolation of a field vanishing on a wall, and
                        spread as gather's transpose under each condition
-                       and with some points free at the walls
         -test wallInterp  the forcing of cutCells interpolation
                        (immersedWallInterpolation) beside a tilted plane:
                        a velocity linear in the distance to the wall is
@@ -1896,12 +1895,7 @@ int main(int argc, char *argv[])
         // (B) random cell values and point forces: spread is gather's
         // transpose in the cells' mass inner product, sum_i F_i . v_i =
         // rho sum_c V_c s_c . u_c, for every condition (the noSlip gather
-        // against the free spread is not: the control);
-        // (C) noSlip with every other point free at the walls
-        // (setFreeAtWalls, the leaflets' tethers): each point's value is
-        // the free transfer's or the noSlip transfer's, to round-off, and
-        // spread is still gather's transpose (against the plain noSlip
-        // spread it is not: the control)
+        // against the free spread is not: the control)
         const scalar rho = 1000.0;
         const scalar d = 1e-4;
         const vector c(0.3, 1, -0.5);
@@ -2137,51 +2131,6 @@ int main(int argc, char *argv[])
         check("noSlip: transpose", aNoSlip, 0, 1e-12, aNoSlip < 1e-12);
         check("noSlip gather, free spread (control: must exceed 1e-3)",
             aControl, 0, 1e-3, aControl > 1e-3);
-
-        cellTetTransfer mixedT(mesh);
-        makeTransfer(mixedT, wallCondition::noSlip);
-        forAll(x, i)
-        {
-            mixedT.setFreeAtWalls(i, i % 2 == 0);
-        }
-        // (C): |v_mixed - v_own| / max |v| over all points, v_own the free
-        // transfer's value for the points free at the walls, the noSlip
-        // transfer's for the others; and how much the two differ at the
-        // near-wall points (the check sees the difference)
-        {
-            const vectorField vMixed(mixedT.gather(uLinear));
-            const vectorField vFree(freeT.gather(uLinear));
-            const vectorField vNoSlip(noSlipT.gather(uLinear));
-            scalar err = 0, scale = 0, apart = 0;
-            label nFreeNear = 0;
-            forAll(x, i)
-            {
-                const vector& own = (i % 2 == 0) ? vFree[i] : vNoSlip[i];
-                err = max(err, mag(vMixed[i] - own));
-                scale = max(scale, mag(vMixed[i]));
-                label held = nearWall[i];
-                reduce(held, sumOp<label>());
-                if (held && i % 2 == 0)
-                {
-                    apart = max(apart, mag(vFree[i] - vNoSlip[i]));
-                    ++nFreeNear;
-                }
-            }
-            err /= scale;
-            apart /= d*mag(c);
-            Info<< "(C) noSlip, every other point free at the walls ("
-                << nFreeNear << " of them near x = 0):" << endl;
-            check("free at the walls: free's or noSlip's value", err, 0,
-                1e-12, err < 1e-12);
-            check("the two differ near the wall (must exceed 1)", apart,
-                0, 1, nFreeNear > 0 && apart > 1);
-        }
-        const scalar aMixed = asymmetry(mixedT, mixedT);
-        const scalar aMixedControl = asymmetry(mixedT, noSlipT);
-        check("free at the walls: transpose", aMixed, 0, 1e-12,
-            aMixed < 1e-12);
-        check("free at the walls: gather, noSlip spread (control: must"
-            " exceed 1e-3)", aMixedControl, 0, 1e-3, aMixedControl > 1e-3);
     }
     else if (test == "outside")
     {

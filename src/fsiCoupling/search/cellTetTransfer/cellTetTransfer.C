@@ -31,8 +31,7 @@ Foam::cellTetTransfer::cellTetTransfer(const fvMesh& mesh)
     nSmallCells_(0),
     cell_(),
     points_(),
-    weights_(),
-    freeAtWalls_()
+    weights_()
 {}
 
 
@@ -172,7 +171,6 @@ void Foam::cellTetTransfer::setSize(const label n)
     cell_.setSize(n, -1);
     points_.setSize(n);
     weights_.setSize(n);
-    freeAtWalls_.setSize(n, false);
 }
 
 
@@ -228,7 +226,7 @@ void Foam::cellTetTransfer::setWeights
 }
 
 
-Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::pointMeans
+Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::pointValues
 (
     const vectorField& u
 ) const
@@ -249,28 +247,8 @@ Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::pointMeans
     {
         up[pointi] /= pointVolume_[pointi];
     }
+    applyWall(up);
     return tup;
-}
-
-
-Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::pointValues
-(
-    const vectorField& u
-) const
-{
-    tmp<vectorField> tup(pointMeans(u));
-    applyWall(tup.ref());
-    return tup;
-}
-
-
-bool Foam::cellTetTransfer::mixedWalls() const
-{
-    // the same answer on every rank (the condition is set on all; a point
-    // free at the walls on one rank only still takes the second sum)
-    return
-        wall_ != wallCondition::free
-     && returnReduce(freeAtWalls_.found(true), orOp<bool>());
 }
 
 
@@ -281,16 +259,7 @@ Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::gather
 {
     tmp<vectorField> tv(new vectorField(cell_.size(), Zero));
     vectorField& v = tv.ref();
-    // the mesh points' values with the wall condition and, for the
-    // points free at the walls, without
-    const vectorField upFree(pointMeans(u));
-    vectorField upWall;
-    const bool mixed = mixedWalls();
-    if (wall_ != wallCondition::free)
-    {
-        upWall = upFree;
-        applyWall(upWall);
-    }
+    const vectorField up(pointValues(u));
     forAll(v, i)
     {
         const label celli = cell_[i];
@@ -298,10 +267,6 @@ Foam::tmp<Foam::vectorField> Foam::cellTetTransfer::gather
         {
             continue;
         }
-        const vectorField& up =
-            (wall_ == wallCondition::free || (mixed && freeAtWalls_[i]))
-          ? upFree
-          : upWall;
         // the cell centre's value: the cell's own, or in a cell much
         // smaller than those around it (a sliver) the mean of its points'
         // (setPointData())
@@ -344,11 +309,7 @@ void Foam::cellTetTransfer::spread
     const scalarField& V = mesh_.V();
     s.setSize(mesh_.nCells());
     s = Zero;
-    // the mesh points' shares: those the wall condition projects and,
-    // for the points free at the walls, those it does not
     vectorField pointF(mesh_.nPoints(), Zero);
-    const bool mixed = mixedWalls();
-    vectorField pointFfree(mixed ? mesh_.nPoints() : 0, Zero);
     forAll(F, i)
     {
         const label celli = cell_[i];
@@ -356,8 +317,6 @@ void Foam::cellTetTransfer::spread
         {
             continue;
         }
-        vectorField& toPoints =
-            (mixed && freeAtWalls_[i]) ? pointFfree : pointF;
         if (ownCentre_[celli])
         {
             s[celli] += weights_[i][0]*F[i]/(rho*V[celli]);
@@ -368,24 +327,16 @@ void Foam::cellTetTransfer::spread
             const vector Fc = weights_[i][0]*F[i]/cPoints.size();
             for (const label pointi : cPoints)
             {
-                toPoints[pointi] += Fc;
+                pointF[pointi] += Fc;
             }
         }
         for (direction k = 0; k < 3; ++k)
         {
-            toPoints[points_[i][k]] += weights_[i][k + 1]*F[i];
+            pointF[points_[i][k]] += weights_[i][k + 1]*F[i];
         }
     }
     syncTools::syncPointList(mesh_, pointF, plusEqOp<vector>(), vector::zero);
     applyWall(pointF);
-    if (mixed)
-    {
-        syncTools::syncPointList
-        (
-            mesh_, pointFfree, plusEqOp<vector>(), vector::zero
-        );
-        pointF += pointFfree;
-    }
 
     const labelListList& pointCells = mesh_.pointCells();
     forAll(pointF, pointi)

@@ -541,14 +541,6 @@ Foam::fv::immersedElasticForce::immersedElasticForce
             tethered_[i] = (cmptSum(free_[i]) == 0);
         }
     }
-    // a tether holds the fluid where it is: it takes the cells' mean at
-    // the wall points whatever their condition (with noSlip its sample by
-    // the wall would be pulled towards zero and part of its force would go
-    // to the wall; cellTetTransfer)
-    forAll(tethered_, i)
-    {
-        transfer_.setFreeAtWalls(i, tethered_[i]);
-    }
     transfer_.setPointData(smallCell_);
     // the sharp method's walk limit (immersedPairs' maxWalk default)
     locator_.reset(new immersedPointLocator(mesh, 100));
