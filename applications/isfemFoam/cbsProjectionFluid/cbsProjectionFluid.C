@@ -197,6 +197,7 @@ void Foam::cbsProjectionFluid::stepStart()
     // its solve diverged. The coupling iterations of one step (the sharp
     // method's) keep its length and go on from their last iterate, as
     // PIMPLE's outer correctors do.
+    control_.setRepeated(false);
     if (immersed_.empty())
     {
         return;
@@ -222,6 +223,9 @@ void Foam::cbsProjectionFluid::stepStart()
     }
     if (dt == startDeltaT_)
     {
+        // a coupling iteration: the step solved again from its last
+        // iterate (cbsControl)
+        control_.setRepeated(true);
         return;
     }
     startDeltaT_ = dt;
