@@ -195,9 +195,9 @@ void Foam::cbsProjectionFluid::stepStart()
     // after a refused step whose nodes' velocity had jumped by tens of
     // m/s the next momentum matrix was no longer diagonally dominant and
     // its solve diverged. The coupling iterations of one step (the sharp
-    // method's) keep its length and go on from their last iterate, as
-    // PIMPLE's outer correctors do.
-    control_.setRepeated(false);
+    // method's) keep its length: each solves the step from its start too,
+    // the method putting U, p and phi back before it
+    // (fv::immersedForcing::restoreFluid).
     if (immersed_.empty())
     {
         return;
@@ -223,9 +223,6 @@ void Foam::cbsProjectionFluid::stepStart()
     }
     if (dt == startDeltaT_)
     {
-        // a coupling iteration: the step solved again from its last
-        // iterate (cbsControl)
-        control_.setRepeated(true);
         return;
     }
     startDeltaT_ = dt;
