@@ -126,6 +126,8 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double hMin, double waveModu
           options_.depthFraction > 0 && options_.depthFraction <= 2, "(0, 2]");
     range("facingCosine", options_.facingCosine,
           options_.facingCosine >= 0 && options_.facingCosine < 1, "[0, 1)");
+    range("volumeLimit", options_.volumeLimit,
+          options_.volumeLimit >= 0 && options_.volumeLimit < 1, "[0, 1)");
     range("dampingRatio", options_.dampingRatio,
           options_.dampingRatio >= 0 && options_.dampingRatio <= 1, "[0, 1]");
     (void)density;
@@ -359,64 +361,114 @@ KinematicContact PenaltyContact::constrainVelocities(const TetMesh& mesh,
                     "not " + std::to_string(dt));
     }
     KinematicContact report;
-    if (!(options_.betweenParts || options_.selfContact) && rigidTri_.empty()) return report;
-    search(mesh, x);
+    const bool pairs = options_.betweenParts || options_.selfContact || !rigidTri_.empty();
+    const double jMin = options_.volumeLimit;
+    if (!pairs && !(jMin > 0)) return report;
 
+    // One unilateral constraint: sum_j dir_j . v_{node_j} >= target, met by
+    // impulses lambda dir_j (velocity changes lambda invMass_j dir_j)
     struct Constraint {
-        int n;          // nodes: p, then T's (none on a rigid surface)
+        int n;          // nodes
         int node[4];
-        double b[4];    // +1 for p, -w_j for T's nodes
-        Vec3 normal;
-        double target;  // smallest admissible v_n
-        double k;       // 1 / (sum_j b_j^2 invMass_j): v_n per unit impulse, inverted
+        Vec3 dir[4];
+        double target;  // smallest admissible rate
+        double k;       // 1 / (sum_j |dir_j|^2 invMass_j): rate per unit impulse, inverted
         double lambda;  // accumulated impulse
+        bool volume;
     };
     std::vector<Constraint> cs;
-    const int ns = static_cast<int>(slaveNodes_.size());
-    double vScale = 0;
-    for (const Vec3& vi : v) vScale = std::max(vScale, vi.norm());
-    report.minGap = depth_;
-    for (int s = 0; s < ns; ++s) {
-        Nearest r;
-        if (!nearest(mesh, x, s, r, false) || r.lateral >= depth_) continue;
-        ++report.pairs;
-        report.minGap = std::min(report.minGap, r.gap);
-        Constraint c{1, {slaveNodes_[s], 0, 0, 0}, {1, 0, 0, 0}, r.normal,
-                     r.gap >= 0 ? -r.gap / dt : -0.5 * r.gap / dt, 0, 0};
-        if (r.id >= 0) {
-            const Tri& t = mesh.faces()[mesh.boundaryFaces()[r.id]].nodes;
-            for (int j = 0; j < 3; ++j) c.node[j + 1] = t[j], c.b[j + 1] = -r.w[j];
-            c.n = 4;
-        }
+    auto add = [&](Constraint c) {
         double sum = 0;
-        for (int j = 0; j < c.n; ++j) sum += c.b[j] * c.b[j] * invMass[c.node[j]];
-        if (!(sum > 0)) continue;  // neither side may move
+        for (int j = 0; j < c.n; ++j) sum += c.dir[j].squaredNorm() * invMass[c.node[j]];
+        if (!(sum > 0)) return;  // no node may move
         c.k = 1.0 / sum;
         cs.push_back(c);
+    };
+    double vScale = 0;
+    for (const Vec3& vi : v) vScale = std::max(vScale, vi.norm());
+
+    // Contact pairs: v_n = n.(v_p - sum_j w_j v_j) >= -g/dt (g >= 0), -g/(2 dt) (g < 0)
+    std::vector<char> inPair(jMin > 0 ? nn : 0, 0);
+    if (pairs) {
+        search(mesh, x);
+        const int ns = static_cast<int>(slaveNodes_.size());
+        report.minGap = depth_;
+        for (int s = 0; s < ns; ++s) {
+            Nearest r;
+            if (!nearest(mesh, x, s, r, false) || r.lateral >= depth_) continue;
+            ++report.pairs;
+            report.minGap = std::min(report.minGap, r.gap);
+            Constraint c{1, {slaveNodes_[s], 0, 0, 0}, {r.normal, Vec3::Zero(), Vec3::Zero(),
+                         Vec3::Zero()}, r.gap >= 0 ? -r.gap / dt : -0.5 * r.gap / dt, 0, 0, false};
+            if (r.id >= 0) {
+                const Tri& t = mesh.faces()[mesh.boundaryFaces()[r.id]].nodes;
+                for (int j = 0; j < 3; ++j) c.node[j + 1] = t[j], c.dir[j + 1] = -r.w[j] * r.normal;
+                c.n = 4;
+            }
+            if (!inPair.empty()) {
+                for (int j = 0; j < c.n; ++j) inPair[c.node[j]] = 1;
+            }
+            add(c);
+        }
+        if (report.pairs == 0) report.minGap = 0;
     }
-    if (report.pairs == 0) report.minGap = 0;
+
+    // Volume limits: dV/dt = sum_a g_a.v_a >= (Jmin V0 - V)/dt, half that
+    // below Jmin V0; scaled by V0^(2/3) to a velocity
+    if (jMin > 0) {
+        const auto& X = mesh.coordinates();
+        const double watch = 0.5 * (1.0 + jMin);
+        for (int e = 0; e < mesh.nElements(); ++e) {
+            const Tet& t = mesh.elements()[e];
+            const Vec3 a = X[t[1]] - X[t[0]], b = X[t[2]] - X[t[0]], c = X[t[3]] - X[t[0]];
+            const double v0 = a.dot(b.cross(c)) / 6.0;
+            const Vec3 d1 = x[t[1]] - x[t[0]], d2 = x[t[2]] - x[t[0]], d3 = x[t[3]] - x[t[0]];
+            const double vol = d1.dot(d2.cross(d3)) / 6.0;
+            Vec3 g[4];
+            g[1] = d2.cross(d3) / 6.0;
+            g[2] = d3.cross(d1) / 6.0;
+            g[3] = d1.cross(d2) / 6.0;
+            g[0] = -(g[1] + g[2] + g[3]);
+            double rate = 0;
+            for (int j = 0; j < 4; ++j) rate += g[j].dot(v[t[j]]);
+            const double J = vol / v0;
+            bool touched = false;
+            for (int j = 0; j < 4 && !inPair.empty(); ++j) touched = touched || inPair[t[j]];
+            if (!(J < watch || (vol + dt * rate) / v0 < watch || touched)) continue;
+            ++report.elements;
+            report.minVolumeRatio = std::min(report.minVolumeRatio, J);
+            const double scale = 1.0 / std::cbrt(v0 * v0);
+            const double lower = jMin * v0;
+            Constraint con{4, {t[0], t[1], t[2], t[3]},
+                           {scale * g[0], scale * g[1], scale * g[2], scale * g[3]},
+                           scale * (vol >= lower ? (lower - vol) / dt : 0.5 * (lower - vol) / dt),
+                           0, 0, true};
+            add(con);
+        }
+    }
+
     const double tolerance = 1e-9 + 1e-3 * vScale;
     std::vector<Vec3> v0;
-    while (report.sweeps < sweeps) {
+    while (!cs.empty() && report.sweeps < sweeps) {
         ++report.sweeps;
         double worst = 0;
         for (Constraint& c : cs) {
-            double vn = 0;
-            for (int j = 0; j < c.n; ++j) vn += c.b[j] * v[c.node[j]].dot(c.normal);
+            double rate = 0;
+            for (int j = 0; j < c.n; ++j) rate += c.dir[j].dot(v[c.node[j]]);
             // projected: the accumulated impulse stays >= 0
-            const double lambda = std::max(0.0, c.lambda + (c.target - vn) * c.k);
+            const double lambda = std::max(0.0, c.lambda + (c.target - rate) * c.k);
             const double d = lambda - c.lambda;
             if (d == 0) continue;
             worst = std::max(worst, std::abs(d) / c.k);
             if (v0.empty()) v0 = v;
             c.lambda = lambda;
-            for (int j = 0; j < c.n; ++j) {
-                v[c.node[j]] += (d * c.b[j] * invMass[c.node[j]]) * c.normal;
-            }
+            for (int j = 0; j < c.n; ++j) v[c.node[j]] += (d * invMass[c.node[j]]) * c.dir[j];
         }
         if (worst <= tolerance) break;
     }
-    for (const Constraint& c : cs) report.held += c.lambda > 0;
+    for (const Constraint& c : cs) {
+        if (c.lambda > 0) ++(c.volume ? report.volumeHeld : report.held);
+    }
     for (std::size_t i = 0; !v0.empty() && i < v.size(); ++i) {
         report.maxChange = std::max(report.maxChange, (v[i] - v0[i]).norm());
     }

@@ -385,7 +385,7 @@ void Foam::immersedSolids::deformable::readLoadsAndContact()
             c,
             {
                 "self", "dampingRatio", "stepFraction", "penaltyScale",
-                "depthFraction", "kinematic"
+                "depthFraction", "kinematic", "volumeLimit"
             }
         );
         smoothedSolid::ContactOptions co;
@@ -396,6 +396,17 @@ void Foam::immersedSolids::deformable::readLoadsAndContact()
         co.depthFraction =
             c.getOrDefault<scalar>("depthFraction", co.depthFraction);
         co.kinematic = c.getOrDefault<Switch>("kinematic", co.kinematic);
+        co.volumeLimit =
+            c.getOrDefault<scalar>("volumeLimit", co.volumeLimit);
+        if (co.volumeLimit > 0 && !co.kinematic)
+        {
+            FatalIOErrorInFunction(c)
+                << "Entry 'contact' in " << dict_.name() << ": volumeLimit "
+                << co.volumeLimit << " limits the motion of a solid the"
+                << " fluid carries (immersedElasticForce); set 'kinematic"
+                << " yes' as well, or remove volumeLimit"
+                << exit(FatalIOError);
+        }
         guarded(dict_, "contact", [&] { s.enableContact(co); });
     }
     if (dict_.found("contactSurfaces"))
@@ -781,7 +792,7 @@ bool Foam::immersedSolids::deformable::tryMoveWith
     {
         const smoothedSolid::KinematicContact k =
             solid_->constrainCarriedVelocity(d, dt);
-        if (k.held)
+        if (k.held || k.volumeHeld)
         {
             forAll(v, i)
             {
@@ -789,8 +800,15 @@ bool Foam::immersedSolids::deformable::tryMoveWith
             }
             Info<< "deformable solid: contact held " << k.held << " of "
                 << k.pairs << " pairs (smallest gap " << 1e3*k.minGap
-                << " mm; largest velocity change " << k.maxChange
-                << " m/s; " << k.sweeps << " sweeps)" << endl;
+                << " mm)";
+            if (k.elements)
+            {
+                Info<< ", the volume limit " << k.volumeHeld << " of "
+                    << k.elements << " elements (smallest J "
+                    << k.minVolumeRatio << ")";
+            }
+            Info<< "; largest velocity change " << k.maxChange
+                << " m/s; " << k.sweeps << " sweeps" << endl;
         }
         solid_->moveWith(d, dt);
     }
