@@ -128,6 +128,10 @@ PenaltyContact::PenaltyContact(const TetMesh& mesh, double hMin, double waveModu
           options_.facingCosine >= 0 && options_.facingCosine < 1, "[0, 1)");
     range("volumeLimit", options_.volumeLimit,
           options_.volumeLimit >= 0 && options_.volumeLimit < 1, "[0, 1)");
+    if (options_.volumeLimit > 0 && !options_.kinematic) {
+        throw Error("contact option volumeLimit = " + std::to_string(options_.volumeLimit) +
+                    " limits the velocities of a carried solid: it needs the kinematic option");
+    }
     range("dampingRatio", options_.dampingRatio,
           options_.dampingRatio >= 0 && options_.dampingRatio <= 1, "[0, 1]");
     (void)density;
@@ -376,13 +380,16 @@ KinematicContact PenaltyContact::constrainVelocities(const TetMesh& mesh,
         double lambda;  // accumulated impulse
         bool volume;
     };
-    std::vector<Constraint> cs;
-    auto add = [&](Constraint c) {
+    // The elements' constraints first in each sweep, the pairs last: the
+    // sweeps stop with the pairs' corrections the latest
+    std::vector<Constraint> pairCs, volumeCs;
+    auto add = [&](std::vector<Constraint>& cs, Constraint c) {
         double sum = 0;
         for (int j = 0; j < c.n; ++j) sum += c.dir[j].squaredNorm() * invMass[c.node[j]];
-        if (!(sum > 0)) return;  // no node may move
+        if (!(sum > 0)) return false;  // no node may move
         c.k = 1.0 / sum;
         cs.push_back(c);
+        return true;
     };
     double vScale = 0;
     for (const Vec3& vi : v) vScale = std::max(vScale, vi.norm());
@@ -408,49 +415,58 @@ KinematicContact PenaltyContact::constrainVelocities(const TetMesh& mesh,
             if (!inPair.empty()) {
                 for (int j = 0; j < c.n; ++j) inPair[c.node[j]] = 1;
             }
-            add(c);
+            add(pairCs, c);
         }
         if (report.pairs == 0) report.minGap = 0;
     }
 
     // Volume limits: dV/dt = sum_a g_a.v_a >= (Jmin V0 - V)/dt, half that
-    // below Jmin V0; scaled by V0^(2/3) to a velocity
-    if (jMin > 0) {
-        const auto& X = mesh.coordinates();
+    // below Jmin V0; scaled by V0^(2/3) to a velocity. An element is watched
+    // once J, or J at the end of the step at the velocities as they stand,
+    // is below (1 + Jmin)/2, or a node of it is in a pair; after the sweeps
+    // the elements not watched are checked again at the corrected
+    // velocities (the elements' impulses squeeze their neighbours)
+    std::vector<char> watched(jMin > 0 ? mesh.nElements() : 0, 0);
+    auto watchElements = [&](bool first) {
         const double watch = 0.5 * (1.0 + jMin);
+        bool added = false;
         for (int e = 0; e < mesh.nElements(); ++e) {
+            if (watched[e]) continue;
             const Tet& t = mesh.elements()[e];
-            const Vec3 a = X[t[1]] - X[t[0]], b = X[t[2]] - X[t[0]], c = X[t[3]] - X[t[0]];
-            const double v0 = a.dot(b.cross(c)) / 6.0;
             const Vec3 d1 = x[t[1]] - x[t[0]], d2 = x[t[2]] - x[t[0]], d3 = x[t[3]] - x[t[0]];
-            const double vol = d1.dot(d2.cross(d3)) / 6.0;
             Vec3 g[4];
             g[1] = d2.cross(d3) / 6.0;
             g[2] = d3.cross(d1) / 6.0;
             g[3] = d1.cross(d2) / 6.0;
             g[0] = -(g[1] + g[2] + g[3]);
+            const double vol = d1.dot(g[1]);
             double rate = 0;
             for (int j = 0; j < 4; ++j) rate += g[j].dot(v[t[j]]);
+            const double v0 = mesh.elementVolume(e);
             const double J = vol / v0;
             bool touched = false;
-            for (int j = 0; j < 4 && !inPair.empty(); ++j) touched = touched || inPair[t[j]];
+            for (int j = 0; first && j < 4 && !inPair.empty(); ++j) touched = touched || inPair[t[j]];
             if (!(J < watch || (vol + dt * rate) / v0 < watch || touched)) continue;
-            ++report.elements;
-            report.minVolumeRatio = std::min(report.minVolumeRatio, J);
+            watched[e] = 1;
             const double scale = 1.0 / std::cbrt(v0 * v0);
             const double lower = jMin * v0;
             Constraint con{4, {t[0], t[1], t[2], t[3]},
                            {scale * g[0], scale * g[1], scale * g[2], scale * g[3]},
                            scale * (vol >= lower ? (lower - vol) / dt : 0.5 * (lower - vol) / dt),
                            0, 0, true};
-            add(con);
+            if (add(volumeCs, con)) {
+                ++report.elements;
+                report.minVolumeRatio = std::min(report.minVolumeRatio, J);
+                added = true;
+            }
         }
-    }
+        return added;
+    };
+    if (jMin > 0) watchElements(true);
 
     const double tolerance = 1e-9 + 1e-3 * vScale;
     std::vector<Vec3> v0;
-    while (!cs.empty() && report.sweeps < sweeps) {
-        ++report.sweeps;
+    auto sweep = [&](std::vector<Constraint>& cs) {
         double worst = 0;
         for (Constraint& c : cs) {
             double rate = 0;
@@ -464,11 +480,19 @@ KinematicContact PenaltyContact::constrainVelocities(const TetMesh& mesh,
             c.lambda = lambda;
             for (int j = 0; j < c.n; ++j) v[c.node[j]] += (d * invMass[c.node[j]]) * c.dir[j];
         }
-        if (worst <= tolerance) break;
+        return worst;
+    };
+    for (int round = 0; round < 4; ++round) {
+        while (!(pairCs.empty() && volumeCs.empty()) && report.sweeps < sweeps) {
+            ++report.sweeps;
+            const double worstVolume = sweep(volumeCs);
+            const double worstPair = sweep(pairCs);
+            if (std::max(worstVolume, worstPair) <= tolerance) break;
+        }
+        if (!(jMin > 0) || v0.empty() || !watchElements(false)) break;
     }
-    for (const Constraint& c : cs) {
-        if (c.lambda > 0) ++(c.volume ? report.volumeHeld : report.held);
-    }
+    for (const Constraint& c : pairCs) report.held += c.lambda > 0;
+    for (const Constraint& c : volumeCs) report.volumeHeld += c.lambda > 0;
     for (std::size_t i = 0; !v0.empty() && i < v.size(); ++i) {
         report.maxChange = std::max(report.maxChange, (v[i] - v0[i]).norm());
     }

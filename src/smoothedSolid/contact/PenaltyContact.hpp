@@ -75,11 +75,12 @@ struct ContactOptions {
     // the pairs limit the nodes' velocities instead of acting by springs
     // (PenaltyContact::constrainVelocities)
     bool kinematic = false;
-    // With kinematic: no element's volume ratio J = V/V0 falls below this in
-    // a carried step ([0, 1); 0: no limit). A solid thinner than the fluid's
-    // cells cannot show the fluid its stiffness through its thickness: a
-    // node stopped at a wall while the fluid carries the nodes behind it on
-    // crushes the elements between them (PenaltyContact::constrainVelocities)
+    // With kinematic: no element's volume ratio J = V/V0 falls below this
+    // in a carried step, to first order in the step ([0, 1); 0: no limit).
+    // A solid thinner than the fluid's cells cannot show the fluid its
+    // stiffness through its thickness: a node stopped at a wall while the
+    // fluid carries the nodes behind it on crushes the elements between
+    // them (PenaltyContact::constrainVelocities)
     double volumeLimit = 0.0;
 };
 
@@ -160,19 +161,22 @@ public:
     // With options().volumeLimit = Jmin > 0 each element e whose volume
     // ratio J = V/V0 could come near Jmin in the step (J, or J at the end
     // of the step at the given velocities, below (1 + Jmin)/2, or a node in
-    // a contact pair) is a unilateral constraint in the same sweeps on the
-    // rate of its volume, dV/dt = sum_a g_a . v_a, g_a = dV/dx_a (the area
-    // vector of the face opposite node a over 3, pointing away from a):
+    // a contact pair; after the sweeps the other elements are checked again
+    // at the corrected velocities, up to three more times) is a unilateral
+    // constraint in the same sweeps (before the pairs in each) on the rate
+    // of its volume, dV/dt = sum_a g_a . v_a, g_a = dV/dx_a (the area
+    // vector of the face opposite node a over 3, pointing from that face
+    // toward a):
     //     dV/dt >= (Jmin V0 - V)/dt         (V >= Jmin V0),
     //     dV/dt >= (Jmin V0 - V)/(2 dt)     (V <  Jmin V0: half recovered),
     // met by impulses lambda g_a on its nodes, lambda >= 0: the impulse of
     // a pressure in the element, which pushes its nodes apart and, as
     // sum_a g_a = 0, keeps the solid's momentum. V is linear in each node's
-    // position, so the limit is exact for one node's motion and first order
-    // otherwise. A carried solid is then incompressible below Jmin where
-    // the fluid cannot resolve it: a node the contact stops at a wall holds
-    // the nodes behind it off (or the wall, through the contact, holds
-    // them).
+    // position, so the limit is exact for one node's motion and first
+    // order in the step otherwise. A carried solid is then incompressible
+    // below Jmin where the fluid cannot resolve it: a node the contact stops
+    // at a wall holds the nodes behind it off (or the wall, through the
+    // contact, holds them).
     //
     // The volume constraints are scaled by V0^(2/3), so their tolerance is
     // a velocity as the pairs'.
