@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <numeric>
 #include <string>
 
@@ -274,6 +275,26 @@ TEST(Contact, NodesHeldStillHaveNoRigidPairs)
     EXPECT_GT(slides.uy, 0.0);
 }
 
+namespace {
+
+// The plate of the two tests below, 50 mm wide, 2 mm thick and 50 mm tall
+// (5 x 1 x 4 hexahedra), leaflet-like, its edge 5 mm above the rigid plane
+// z = 0, with the given contact options
+std::unique_ptr<ExplicitSolid> plateAbovePlane(const ContactOptions& options)
+{
+    TetMesh mesh = TetMesh::box(5, 1, 4, [](const Vec3& s) {
+        return Vec3(0.05 * s.x(), 0.002 * s.y(), 0.005 + 0.05 * s.z());
+    });
+    auto solid = std::make_unique<ExplicitSolid>(std::move(mesh),
+                                                 std::make_shared<NeoHookean>(3e5, 5e6, 1000.0));
+    solid->enableContact(options);
+    solid->addRigidSurface({{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)},
+                            {{0, 1, 2}, {0, 2, 3}}});
+    return solid;
+}
+
+}  // namespace
+
 // A thin plate carried edge on into a rigid plane with the kinematic contact:
 // its bottom edge's nodes have normals along the wall (the plate's faces
 // outweigh its thin edge), so they do not face the plane, yet the plane
@@ -285,15 +306,10 @@ TEST(Contact, NodesHeldStillHaveNoRigidPairs)
 TEST(Contact, CarriedPlateEdgeOnHeldByRigidPlane)
 {
     auto run = [](bool kinematic, double& topVelocity) {
-        TetMesh mesh = TetMesh::box(5, 1, 4, [](const Vec3& s) {
-            return Vec3(0.05 * s.x(), 0.002 * s.y(), 0.005 + 0.05 * s.z());
-        });
-        ExplicitSolid solid(std::move(mesh), std::make_shared<NeoHookean>(3e5, 5e6, 1000.0));
         ContactOptions options;
         options.kinematic = kinematic;
-        solid.enableContact(options);
-        solid.addRigidSurface({{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)},
-                               {{0, 1, 2}, {0, 2, 3}}});
+        const std::unique_ptr<ExplicitSolid> plate = plateAbovePlane(options);
+        ExplicitSolid& solid = *plate;
         const auto& X = solid.mesh().coordinates();
         const int nn = static_cast<int>(X.size());
         double lowest = 1e300;
@@ -357,16 +373,11 @@ double smallestVolumeRatio(const ExplicitSolid& solid)
 TEST(Contact, CarriedPlateEdgeOnKeptFromCrushingByVolumeLimit)
 {
     auto run = [](double volumeLimit, double& lowest) {
-        TetMesh mesh = TetMesh::box(5, 1, 4, [](const Vec3& s) {
-            return Vec3(0.05 * s.x(), 0.002 * s.y(), 0.005 + 0.05 * s.z());
-        });
-        ExplicitSolid solid(std::move(mesh), std::make_shared<NeoHookean>(3e5, 5e6, 1000.0));
         ContactOptions options;
         options.kinematic = true;
         options.volumeLimit = volumeLimit;
-        solid.enableContact(options);
-        solid.addRigidSurface({{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)},
-                               {{0, 1, 2}, {0, 2, 3}}});
+        const std::unique_ptr<ExplicitSolid> plate = plateAbovePlane(options);
+        ExplicitSolid& solid = *plate;
         const auto& X = solid.mesh().coordinates();
         const int nn = static_cast<int>(X.size());
         double J = 1e300;
