@@ -72,17 +72,36 @@ void Foam::couplingSchemes::IQNILS::dropOldColumns()
 }
 
 
+void Foam::couplingSchemes::IQNILS::appendColumn
+(
+    const vectorField& r,
+    const vectorField& F
+)
+{
+    if (iteration_ > 0)
+    {
+        Vcols_.append(new vectorField(r - previousResidual_));
+        Wcols_.append(new vectorField(F - previousOutput_));
+        stepCols_.append(time_.timeIndex());
+    }
+    previousResidual_ = r;
+    previousOutput_ = F;
+    dropOldColumns();
+}
+
+
 void Foam::couplingSchemes::IQNILS::quasiNewton
 (
     const vectorField& r,
     const vectorField& free,
-    vectorField& guess
+    vectorField& guess,
+    const scalar omega
 ) const
 {
     const label m = Vcols_.size();
     if (m == 0)
     {
-        guess += relaxation_*r;
+        guess += omega*r;
         return;
     }
 
@@ -143,7 +162,7 @@ void Foam::couplingSchemes::IQNILS::quasiNewton
     {
         remainder += alpha[a]*Vcols_[use[a]];
     }
-    guess = cmptMultiply(free, guess) + relaxation_*remainder;
+    guess = cmptMultiply(free, guess) + omega*remainder;
     for (label a = 0; a < k; ++a)
     {
         guess += alpha[a]*(Wcols_[use[a]] - Vcols_[use[a]]);
@@ -186,9 +205,10 @@ bool Foam::couplingSchemes::IQNILS::update
     residual_ = Foam::sqrt(sum(magSqr(r)))/max(magF, VSMALL);
     Info<< owner_.c_str() << ": coupling iteration " << iteration_ + 1
         << ", force residual " << residual_ << endl;
-    if (residual_ < tolerance_ || iteration_ + 1 >= maxIterations_)
+    const bool converged = residual_ < tolerance_;
+    if (converged || iteration_ + 1 >= maxIterations_)
     {
-        if (residual_ >= tolerance_)
+        if (!converged)
         {
             WarningInFunction
                 << "The coupling did not converge in " << maxIterations_
@@ -201,20 +221,25 @@ bool Foam::couplingSchemes::IQNILS::update
             // The next step starts with a relaxation, as the first one.
             dropHistory();
         }
+        else
+        {
+            // the last pass's differences model the map too (preCICE's
+            // BaseQNAcceleration::iterationsConverged): without them a
+            // step of two passes would leave no column
+            appendColumn(r, F);
+            // the next step's first force: the accepted one corrected by
+            // the columns, x_k + (W - V) alpha, the quasi-Newton update
+            // without the relaxed part the columns do not model. The
+            // fluid's force F(x_k) would be farther from this step's
+            // fixed point where the flag's added mass exceeds its own
+            // (F - x* = J (x_k - x*), |J| above 1)
+            quasiNewton(r, free, guess, 0);
+        }
         return true;
     }
 
-    if (iteration_ > 0)
-    {
-        Vcols_.append(new vectorField(r - previousResidual_));
-        Wcols_.append(new vectorField(F - previousOutput_));
-        stepCols_.append(time_.timeIndex());
-    }
-    previousResidual_ = r;
-    previousOutput_ = F;
-    dropOldColumns();
-
-    quasiNewton(r, free, guess);
+    appendColumn(r, F);
+    quasiNewton(r, free, guess, relaxation_);
     return false;
 }
 

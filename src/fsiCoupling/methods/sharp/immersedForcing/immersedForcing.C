@@ -1188,7 +1188,7 @@ bool Foam::fv::immersedForcing::updateForce()
     }
     // the force the fluid gave back against the one handed to the solid
     // (couplingScheme): done, or the next iteration from the step's start
-    const immersedSolid& solid = coupling_.solid();
+    immersedSolid& solid = coupling_.solid();
     if
     (
         scheme_->update
@@ -1199,6 +1199,9 @@ bool Foam::fv::immersedForcing::updateForce()
         )
     )
     {
+        // the scheme's first force for the next step, held by the solid
+        // (and written with its state for a restart)
+        solid.externalForce() = guess_;
         return true;
     }
     redo_ = true;
