@@ -367,6 +367,10 @@ bool Foam::fv::immersedElasticForce::spreadForce
     // step's end: the look-ahead of v and xi + dt v here (the drift
     // rescaled only where the rates' scale changes, so that the spring's
     // force carries over: carriedImplicitForce::tetherRates).
+    // kept for a step refused below (nothing changed then)
+    const vectorField drift0(tetherDrift_);
+    const scalar rateScale0 = tetherRateScale_;
+    const scalar driftStep0 = tetherDriftStep_;
     const bool implicitTethers = this->implicitTethers();
     scalar dampingRate = 0, springRate = 0;
     if (implicitTethers)
@@ -417,6 +421,32 @@ bool Foam::fv::immersedElasticForce::spreadForce
     transfer_.spread(Fq, rhoFluid_, s);
 
     const scalarField& V = mesh_.V();
+
+    // A blown-up solid: its force would move the fluid of a cell by
+    // dt^2 |s| (s the force per unit mass) more than maxCellMoves of the
+    // cell's length, V^(1/3), in one step. The flow moves its fluid less
+    // than a cell a step (its Courant number) and the tethers' force
+    // stops the fluid at a node within a step (its velocity at most): a
+    // hundred cells is out of reach of either. Handed to the fluid, such a
+    // force ends in the pressure solver's floating-point trap.
+    scalar moves = 0;
+    forAll(s, celli)
+    {
+        moves = max(moves, sqr(dt)*mag(s[celli])/Foam::cbrt(V[celli]));
+    }
+    reduce(moves, maxOp<scalar>());
+    if (!(moves <= maxCellMoves_))
+    {
+        tetherDrift_ = drift0;
+        tetherRateScale_ = rateScale0;
+        tetherDriftStep_ = driftStep0;
+        why =
+            "its force would move the fluid of a cell "
+          + Foam::name(moves) + " of the cell's lengths in one step (above "
+          + Foam::name(maxCellMoves_) + "): the solid has blown up";
+        return false;
+    }
+
     vector total(Zero);
     forAll(Fq, i)
     {
