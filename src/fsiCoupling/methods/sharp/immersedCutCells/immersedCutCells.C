@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "immersedCutCells.H"
+#include "triSurfaceTools.H"
 
 // * * * * * * * * * * * * * * * Static Functions  * * * * * * * * * * * * * //
 
@@ -140,7 +141,43 @@ Foam::tmp<Foam::scalarField> Foam::immersedCutCells::signedDistance
 {
     List<pointIndexHit> nearest;
     distanceSurface.findNearest(samples, radiusSqr, nearest);
-    const boolList inside(surface.calcInside(samples));
+
+    // The sign: where the nearest point was found, from the side of its
+    // face, edge or point (triSurfaceTools::surfaceSide, what the octree's
+    // volume type does after a nearest search of its own); elsewhere from
+    // the octree (calcInside). The in-plane triangles of a 2D case are
+    // the closed surface's own, with its orientation.
+    boolList inside(samples.size(), false);
+    DynamicList<label> misses;
+    forAll(samples, i)
+    {
+        if (nearest[i].hit())
+        {
+            inside[i] =
+                triSurfaceTools::surfaceSide
+                (
+                    distanceSurface.surface(),
+                    samples[i],
+                    nearest[i].index()
+                )
+             == triSurfaceTools::INSIDE;
+        }
+        else
+        {
+            misses.append(i);
+        }
+    }
+    if (misses.size())
+    {
+        const boolList missInside
+        (
+            surface.calcInside(pointField(samples, misses))
+        );
+        forAll(misses, j)
+        {
+            inside[misses[j]] = missInside[j];
+        }
+    }
 
     tmp<scalarField> tphi(new scalarField(samples.size()));
     scalarField& phi = tphi.ref();

@@ -218,7 +218,9 @@ void Foam::fv::immersedForcing::searchPairs()
         Info<< "immersedForcing: wall location " << locateStart.elapsed()
             << " s" << endl;
     }
-    wallTime_ = double(wallStart.elapsed());
+    // (summed over the step's coupling iterations, as the solid's advances
+    // and the force: the cut cells are found in the first)
+    wallTime_ += double(wallStart.elapsed());
 
     scalarField& chi = coverage_.primitiveFieldRef();
     chi = 0;
